@@ -1,0 +1,53 @@
+#pragma once
+// A contact law composed of small models, one per slot (normal, damping, tangential,
+// rolling), resolved at compile time so the pair loop inlines it. The loop is a
+// template over the law; parameters come per material pair from ContactParameterTable.
+#include <algorithm>
+
+#include "contact/contact_parameters.hpp"
+#include "contact/contact_state.hpp"
+#include "contact/hertz_normal.hpp"
+#include "contact/mindlin_tangential.hpp"
+#include "contact/restitution_damping.hpp"
+#include "contact/rolling_constant_torque.hpp"
+
+namespace regodem {
+
+template <class Normal, class Damping, class Tangential, class Rolling>
+struct ContactLaw {
+  /// Forces of one contact in overlap; updates the tangential history.
+  static ContactForces evaluate(const ContactPairParameters& p, const ContactGeometry& c,
+                                Vec3& tangential_history_m) {
+    const auto normal = Normal::evaluate(p.effective_youngs_modulus_Pa, c.effective_radius_m, c.overlap_m);
+    const double approach_speed = dot(c.relative_velocity_m_per_s, c.normal);  // > 0 while closing
+    const double normal_damping =
+        Damping::coefficient(p.damping_factor, normal.normal_stiffness_N_per_m, c.effective_mass_kg);
+    // Repulsive total normal force; not clamped at zero by default (EDEM), so the
+    // rebound matches the restitution coefficient exactly.
+    double normal_force = normal.elastic_force_N + normal_damping * approach_speed;
+    if (p.clamp_attractive_normal_force) normal_force = std::max(normal_force, 0.0);
+
+    const Vec3 tangential_velocity = c.relative_velocity_m_per_s - approach_speed * c.normal;
+    const double tangential_stiffness =
+        Tangential::stiffness(p.effective_shear_modulus_Pa, normal.contact_radius_m);
+    const double tangential_damping =
+        Damping::coefficient(p.damping_factor, tangential_stiffness, c.effective_mass_kg);
+    const Vec3 tangential = Tangential::evaluate(
+        tangential_history_m, c.normal, tangential_velocity, tangential_stiffness, tangential_damping,
+        p.sliding_friction * std::max(normal_force, 0.0), c.time_step_s);
+
+    ContactForces out;
+    out.elastic_normal_force_N = normal.elastic_force_N;
+    out.tangential_force_on_i_N = tangential;
+    out.force_on_i_N = tangential - normal_force * c.normal;
+    out.rolling_torque_on_i_N_m = Rolling::evaluate(
+        c.relative_angular_velocity_rad_per_s, c.normal, p.rolling_friction, normal.elastic_force_N,
+        c.effective_radius_m, c.inv_inertia_sum, c.time_step_s);
+    return out;
+  }
+};
+
+/// The paper's law: Hertz-Mindlin no-slip with restitution damping and CDT rolling.
+using HertzMindlinLaw = ContactLaw<HertzNormal, RestitutionDamping, MindlinTangential, RollingConstantTorque>;
+
+}  // namespace regodem

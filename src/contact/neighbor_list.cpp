@@ -1,0 +1,182 @@
+#include "contact/neighbor_list.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace regodem {
+
+CellGrid::CellGrid(const Vec3& min_m, const Vec3& max_m, double min_cell_size_m) : origin_m(min_m) {
+  const Vec3 extent = max_m - min_m;
+  // Cap the cell count so a tiny particle in a huge domain cannot exhaust memory.
+  constexpr double kMaxCells = 64.0e6;
+  double size = min_cell_size_m;
+  while ((extent.x / size) * (extent.y / size) * (extent.z / size) > kMaxCells) size *= 1.25;
+  auto cells_along = [size](double length) { return std::max(1, static_cast<int>(std::floor(length / size))); };
+  nx = cells_along(extent.x);
+  ny = cells_along(extent.y);
+  nz = cells_along(extent.z);
+  // Cells at least `size` wide: stretch them to fill the domain exactly.
+  cell_size_m = std::max({extent.x / nx, extent.y / ny, extent.z / nz});
+}
+
+void CellGrid::coordinates(const Vec3& x, int& ix, int& iy, int& iz) const {
+  auto clamp_cell = [this](double coordinate, double origin, int n) {
+    const double c = std::floor((coordinate - origin) / cell_size_m);
+    if (!(c >= 0.0)) return 0;  // also catches NaN
+    return c >= n ? n - 1 : static_cast<int>(c);
+  };
+  ix = clamp_cell(x.x, origin_m.x, nx);
+  iy = clamp_cell(x.y, origin_m.y, ny);
+  iz = clamp_cell(x.z, origin_m.z, nz);
+}
+
+void NeighborList::save_history(const ParticleStore& particles) {
+  saved_.clear();
+  saved_begin_.assign(2 * static_cast<std::size_t>(particles.next_id()), 0);
+  const std::size_t owners = offset.empty() ? 0 : offset.size() - 1;
+  for (std::size_t i = 0; i < owners; ++i) {
+    const std::size_t begin = saved_.size();
+    for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k)
+      if (norm2(tangential_history_m[k]) > 0.0)
+        saved_.push_back({particles.id[partner[k]], kNoWall, tangential_history_m[k]});
+    for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k)
+      if (norm2(wall_tangential_history_m[k]) > 0.0)
+        saved_.push_back({0, wall_primitive[k], wall_tangential_history_m[k]});
+    const ParticleId owner = particles.id[i];
+    saved_begin_[2 * owner] = static_cast<std::uint32_t>(begin);
+    saved_begin_[2 * owner + 1] = static_cast<std::uint32_t>(saved_.size());
+  }
+}
+
+void NeighborList::restore_history(const ParticleStore& particles) {
+  const std::size_t n = particles.size();
+  tangential_history_m.assign(partner.size(), Vec3{});
+  wall_tangential_history_m.assign(wall_primitive.size(), Vec3{});
+  if (saved_.empty()) return;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const ParticleId owner = particles.id[i];
+    if (2 * static_cast<std::size_t>(owner) + 1 >= saved_begin_.size()) continue;  // inserted since
+    const std::uint32_t begin = saved_begin_[2 * owner], end = saved_begin_[2 * owner + 1];
+    for (std::uint32_t s = begin; s < end; ++s) {
+      const SavedContact& c = saved_[s];
+      if (c.wall == kNoWall) {
+        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k)
+          if (particles.id[partner[k]] == c.partner_id) { tangential_history_m[k] = c.history_m; break; }
+      } else {
+        for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k)
+          if (wall_primitive[k] == c.wall) { wall_tangential_history_m[k] = c.history_m; break; }
+      }
+    }
+  }
+}
+
+void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid,
+                           double skin_m, int threads) {
+  save_history(particles);
+  const std::size_t n = particles.size();
+
+  // Counting sort of the particles by cell: afterwards each cell's particles are the
+  // contiguous index range [cell_start_[c], cell_start_[c+1]).
+  cell_of_particle_.resize(n);
+  cell_start_.assign(grid.cell_count() + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    int ix, iy, iz;
+    grid.coordinates(particles.position_m[i], ix, iy, iz);
+    cell_of_particle_[i] = grid.index(ix, iy, iz);
+    ++cell_start_[cell_of_particle_[i] + 1];
+  }
+  for (std::size_t c = 0; c < grid.cell_count(); ++c) cell_start_[c + 1] += cell_start_[c];
+  {
+    std::vector<std::uint32_t> order(n), fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[fill[cell_of_particle_[i]]++] = static_cast<std::uint32_t>(i);
+    particles.permute(order);
+  }
+
+  thread_partners_.resize(threads);
+  thread_walls_.resize(threads);
+  offset.assign(n + 1, 0);
+  wall_offset.assign(n + 1, 0);
+  const double cell = grid.cell_size_m;
+  const auto& x = particles.position_m;
+  const auto& radius = particles.radius_m;
+  const auto& id = particles.id;
+
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+    std::vector<std::uint32_t>& partners = thread_partners_[t];
+    std::vector<std::uint32_t>& wall_hits = thread_walls_[t];
+    partners.clear();
+    wall_hits.clear();
+    for (std::size_t i = begin; i < end; ++i) {
+      const double ri = radius[i];
+      const int reach = static_cast<int>(std::ceil((2.0 * ri + skin_m) / cell));
+      int cx, cy, cz;
+      grid.coordinates(x[i], cx, cy, cz);
+      const std::size_t first = partners.size();
+      for (int iz = std::max(0, cz - reach); iz <= std::min(grid.nz - 1, cz + reach); ++iz)
+        for (int iy = std::max(0, cy - reach); iy <= std::min(grid.ny - 1, cy + reach); ++iy) {
+          const std::uint32_t row = grid.index(0, iy, iz);
+          const std::uint32_t c0 = row + static_cast<std::uint32_t>(std::max(0, cx - reach));
+          const std::uint32_t c1 = row + static_cast<std::uint32_t>(std::min(grid.nx - 1, cx + reach));
+          for (std::uint32_t j = cell_start_[c0]; j < cell_start_[c1 + 1]; ++j) {
+            if (j == i || !owns_pair(ri, id[i], radius[j], id[j])) continue;
+            const double cutoff = ri + radius[j] + skin_m;
+            if (norm2(x[j] - x[i]) < cutoff * cutoff) partners.push_back(j);
+          }
+        }
+      // Deterministic, cache-friendly order within the owner's list.
+      std::sort(partners.begin() + static_cast<std::ptrdiff_t>(first), partners.end());
+      offset[i + 1] = static_cast<std::uint32_t>(partners.size() - first);
+
+      const std::size_t first_wall = wall_hits.size();
+      for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
+        const WallProximity p = closest_wall_point(walls.primitives[w], x[i]);
+        if (p.candidate && p.distance_m < ri + skin_m) wall_hits.push_back(w);
+      }
+      wall_offset[i + 1] = static_cast<std::uint32_t>(wall_hits.size() - first_wall);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    offset[i + 1] += offset[i];
+    wall_offset[i + 1] += wall_offset[i];
+  }
+  partner.resize(offset[n]);
+  wall_primitive.resize(wall_offset[n]);
+  for (int t = 0; t < threads; ++t) {
+    const std::size_t begin = n * t / threads;
+    std::copy(thread_partners_[t].begin(), thread_partners_[t].end(), partner.begin() + offset[begin]);
+    std::copy(thread_walls_[t].begin(), thread_walls_[t].end(), wall_primitive.begin() + wall_offset[begin]);
+  }
+  restore_history(particles);
+
+  // Split owners between threads by estimated force-pass work.
+  thread_begin.assign(threads + 1, static_cast<std::uint32_t>(n));
+  thread_begin[0] = 0;
+  const double total_work = static_cast<double>(n) + 2.0 * (offset[n] + wall_offset[n]);
+  int next_thread = 1;
+  for (std::size_t i = 0; i < n && next_thread < threads; ++i) {
+    const double work_before = static_cast<double>(i) + 2.0 * (offset[i] + wall_offset[i]);
+    if (work_before >= total_work * next_thread / threads) thread_begin[next_thread++] = static_cast<std::uint32_t>(i);
+  }
+
+  position_at_build_m_ = particles.position_m;
+  ++rebuilds_;
+}
+
+bool NeighborList::needs_rebuild(const ParticleStore& particles, const WallSet& walls, double skin_m) const {
+  const std::size_t n = particles.size();
+  if (position_at_build_m_.size() != n || offset.size() != n + 1) return true;
+  double max_move2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_move2)
+  for (std::size_t i = 0; i < n; ++i)
+    max_move2 = std::max(max_move2, norm2(particles.position_m[i] - position_at_build_m_[i]));
+  const double max_move = std::sqrt(max_move2);
+  return 2.0 * max_move > skin_m || max_move + walls.max_displacement_since_build_m() > skin_m;
+}
+
+}  // namespace regodem

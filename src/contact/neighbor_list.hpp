@@ -1,0 +1,84 @@
+#pragma once
+// Neighbour search: a cell grid plus Verlet lists with a skin (DESIGN.md section 5).
+//
+// The pair list is a half list in CSR form: each pair is stored once, by its owner,
+// the larger particle (the lower id between equals). A particle then searches only
+// for partners no larger than itself, within 2R + skin, so the grid cells can be sized
+// for the smallest particles and a 4:1 size mixture costs no more than it must.
+// Rebuilding sorts the particles by cell (cache locality) and carries the contact
+// history (the tangential spring) across, keyed by global particle ids.
+#include <cstdint>
+#include <vector>
+
+#include "core/particle_store.hpp"
+#include "geometry/wall_set.hpp"
+
+namespace regodem {
+
+struct CellGrid {
+  Vec3 origin_m;
+  double cell_size_m = 0.0;
+  int nx = 1, ny = 1, nz = 1;
+
+  CellGrid() = default;
+  CellGrid(const Vec3& min_m, const Vec3& max_m, double min_cell_size_m);
+  std::size_t cell_count() const { return static_cast<std::size_t>(nx) * ny * nz; }
+  /// Cell coordinates of a point, clamped into the grid.
+  void coordinates(const Vec3& x, int& ix, int& iy, int& iz) const;
+  std::uint32_t index(int ix, int iy, int iz) const {
+    return static_cast<std::uint32_t>((static_cast<std::size_t>(iz) * ny + iy) * nx + ix);
+  }
+};
+
+/// True when particle i (radius, id) owns the pair with j.
+inline bool owns_pair(double radius_i, ParticleId id_i, double radius_j, ParticleId id_j) {
+  return radius_i > radius_j || (radius_i == radius_j && id_i < id_j);
+}
+
+class NeighborList {
+ public:
+  // Particle pairs: partners of owner i are partner[offset[i] .. offset[i+1]).
+  std::vector<std::uint32_t> offset;
+  std::vector<std::uint32_t> partner;
+  std::vector<Vec3> tangential_history_m;  // one per pair entry
+  // Particle-wall pairs, same layout; wall_primitive indexes WallSet::primitives.
+  std::vector<std::uint32_t> wall_offset;
+  std::vector<std::uint32_t> wall_primitive;
+  std::vector<Vec3> wall_tangential_history_m;
+  // Owner ranges for the force pass: thread t handles [thread_begin[t], thread_begin[t+1]).
+  std::vector<std::uint32_t> thread_begin;
+
+  /// Sorts the particles by cell, rebuilds both lists and carries the contact history.
+  void rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid, double skin_m,
+               int threads);
+
+  /// True once some particle has moved more than half the skin since the last build,
+  /// or a particle and a wall may have closed the skin between them.
+  bool needs_rebuild(const ParticleStore& particles, const WallSet& walls, double skin_m) const;
+
+  std::size_t pair_count() const { return partner.size(); }
+  std::uint64_t rebuild_count() const { return rebuilds_; }
+
+ private:
+  void save_history(const ParticleStore& particles);
+  void restore_history(const ParticleStore& particles);
+
+  std::vector<Vec3> position_at_build_m_;
+  std::uint64_t rebuilds_ = 0;
+  // History saved by owner id across a rebuild (only entries with a non-zero spring).
+  struct SavedContact {
+    ParticleId partner_id;
+    std::uint32_t wall;  // primitive index, or kNoWall for a particle partner
+    Vec3 history_m;
+  };
+  static constexpr std::uint32_t kNoWall = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> saved_begin_;  // by owner id; size next_id + 1
+  std::vector<SavedContact> saved_;
+  // Reused scratch space.
+  std::vector<std::uint32_t> cell_start_;
+  std::vector<std::uint32_t> cell_of_particle_;
+  std::vector<std::vector<std::uint32_t>> thread_partners_;
+  std::vector<std::vector<std::uint32_t>> thread_walls_;
+};
+
+}  // namespace regodem

@@ -1,0 +1,70 @@
+#pragma once
+// Particle data as a structure of arrays: one contiguous array per field, so the force
+// and integration loops stream through only what they use. Every field is listed once
+// in for_each_field(); resize, permutation (spatial sorting) and removal are driven by
+// that list, so a field added there is carried everywhere.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace regodem {
+
+using ParticleId = std::uint32_t;
+using MaterialIndex = std::uint16_t;
+using RegionTag = std::uint16_t;
+
+struct NewParticle {
+  Vec3 position_m;
+  Vec3 velocity_m_per_s;
+  Vec3 angular_velocity_rad_per_s;
+  double radius_m = 0.0;
+  double density_kg_per_m3 = 0.0;
+  MaterialIndex material = 0;
+  RegionTag region = 0;
+};
+
+class ParticleStore {
+ public:
+  // Per-particle fields (shape: size()).
+  std::vector<ParticleId> id;           // global id, stable across sorting, restarts and (later) ranks
+  std::vector<double> radius_m;
+  std::vector<double> mass_kg;
+  std::vector<double> inv_mass_per_kg;  // 0 for a particle held fixed
+  std::vector<double> inv_inertia;      // 1/(2/5 m R^2); 0 locks rotation
+  std::vector<Vec3> position_m;
+  std::vector<Vec3> velocity_m_per_s;
+  std::vector<Vec3> angular_velocity_rad_per_s;
+  std::vector<Vec3> force_N;
+  std::vector<Vec3> torque_N_m;
+  std::vector<MaterialIndex> material;
+  std::vector<RegionTag> region;
+
+  /// Calls f(vector&) for every per-particle field: the one list of fields.
+  template <class F>
+  void for_each_field(F&& f) {
+    f(id); f(radius_m); f(mass_kg); f(inv_mass_per_kg); f(inv_inertia);
+    f(position_m); f(velocity_m_per_s); f(angular_velocity_rad_per_s); f(force_N); f(torque_N_m);
+    f(material); f(region);
+  }
+
+  std::size_t size() const { return id.size(); }
+  bool empty() const { return id.empty(); }
+  /// Next global id to hand out; ids are never reused.
+  ParticleId next_id() const { return next_id_; }
+  void set_next_id(ParticleId next) { next_id_ = next; }
+
+  /// Appends a solid sphere; returns its local index.
+  std::size_t add(const NewParticle& p);
+  /// Reorders all fields so that new index k holds old index order[k].
+  void permute(const std::vector<std::uint32_t>& order);
+  /// Removes the particles whose flag is set, keeping the order of the rest.
+  void remove_if(const std::vector<char>& remove_flag);
+  void reserve(std::size_t n);
+
+ private:
+  ParticleId next_id_ = 0;
+};
+
+}  // namespace regodem

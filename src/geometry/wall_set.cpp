@@ -1,0 +1,81 @@
+#include "geometry/wall_set.hpp"
+
+#include <algorithm>
+
+namespace regodem {
+
+std::uint32_t WallSet::add_body(const std::string& name, const WallMotion& motion) {
+  WallBody body;
+  body.name = name;
+  body.motion = motion;
+  bodies.push_back(body);
+  return static_cast<std::uint32_t>(bodies.size() - 1);
+}
+
+void WallSet::add_plane(std::uint32_t body, const Vec3& point_m, const Vec3& normal, MaterialIndex material) {
+  WallPrimitive p;
+  p.shape = PrimitiveShape::plane;
+  p.point_m = point_m;
+  p.axis = normalized(normal);
+  p.material = material;
+  p.body = body;
+  primitives.push_back(p);
+}
+
+void WallSet::add_disk(std::uint32_t body, const Vec3& centre_m, const Vec3& normal, double radius_m,
+                       MaterialIndex material) {
+  WallPrimitive p;
+  p.shape = PrimitiveShape::disk;
+  p.point_m = centre_m;
+  p.axis = normalized(normal);
+  p.radius_m = radius_m;
+  p.material = material;
+  p.body = body;
+  primitives.push_back(p);
+}
+
+void WallSet::add_cylinder(std::uint32_t body, const Vec3& base_centre_m, const Vec3& axis, double radius_m,
+                           double length_m, bool contact_inside, bool contact_outside, bool cap_bottom,
+                           bool cap_top, MaterialIndex material) {
+  WallPrimitive p;
+  p.shape = PrimitiveShape::cylinder;
+  p.point_m = base_centre_m;
+  p.axis = normalized(axis);
+  p.radius_m = radius_m;
+  p.length_m = length_m;
+  p.contact_inside = contact_inside;
+  p.contact_outside = contact_outside;
+  // A capped end's edge belongs to its disk; counting it twice would double the force.
+  p.rim_bottom = !cap_bottom;
+  p.rim_top = !cap_top;
+  p.material = material;
+  p.body = body;
+  primitives.push_back(p);
+  if (cap_bottom) add_disk(body, base_centre_m, p.axis, radius_m, material);
+  if (cap_top) add_disk(body, base_centre_m + length_m * p.axis, p.axis, radius_m, material);
+}
+
+void WallSet::advance(double time_s, double dt_s) {
+  for (std::uint32_t b = 0; b < bodies.size(); ++b) {
+    WallBody& body = bodies[b];
+    if (!body.motion.active_at(time_s) || norm2(body.motion.velocity_m_per_s) == 0.0) continue;
+    const Vec3 step = body.motion.velocity_m_per_s * dt_s;
+    body.displacement_m += step;
+    body.motion.axis_point_m += step;
+    body.displacement_since_build_m += norm(step);
+    for (WallPrimitive& p : primitives)
+      if (p.body == b) p.point_m += step;
+  }
+}
+
+double WallSet::max_displacement_since_build_m() const {
+  double largest = 0.0;
+  for (const WallBody& b : bodies) largest = std::max(largest, b.displacement_since_build_m);
+  return largest;
+}
+
+void WallSet::mark_neighbor_build() {
+  for (WallBody& b : bodies) b.displacement_since_build_m = 0.0;
+}
+
+}  // namespace regodem

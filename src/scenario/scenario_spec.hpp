@@ -1,0 +1,168 @@
+#pragma once
+// The scenario as plain data, in SI units and kelvin: what the YAML reader produces
+// (scenario_reader) and what the builder turns into a Simulation (scenario_builder).
+// Nothing here knows YAML. `where` fields keep the file:line of the key that set a
+// value so that checks made after parsing (a missing material, a region outside the
+// domain) can still name the line.
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace regodem {
+
+/// File, line and key path of a value in the scenario file, for error messages.
+struct SourceLocation {
+  std::string file;
+  int line = 0;       // 1-based; 0 = unknown
+  int column = 0;     // 1-based
+  std::string key;    // dotted key path, e.g. "walls[2].radius"
+  std::string describe() const;  // "file:line:column: key"
+};
+
+struct MaterialSpec {
+  std::string name;
+  double density_kg_per_m3 = 0.0;
+  double shear_modulus_Pa = 0.0;
+  double poisson_ratio = 0.0;
+  SourceLocation where;
+};
+
+/// Contact properties of a pair of materials ("interactions" section).
+struct InteractionSpec {
+  std::string material_a, material_b;
+  double restitution = 0.5;
+  double sliding_friction = 0.5;
+  double rolling_friction = 0.0;
+  bool clamp_attractive_normal_force = false;
+  SourceLocation where;
+};
+
+/// Prescribed wall motion: translation at a velocity plus rotation at an angular
+/// velocity about an axis through axis_point (rotation only about the shape's own
+/// symmetry axis for analytic walls), active for start_s <= t < stop_s.
+struct MotionSpec {
+  Vec3 velocity_m_per_s;
+  Vec3 angular_velocity_rad_per_s;
+  Vec3 axis_point_m;
+  double start_s = 0.0;
+  double stop_s = std::numeric_limits<double>::infinity();
+};
+
+enum class WallShape { plane, disk, cylinder };
+enum class CylinderSide { inside, outside, both };
+
+struct WallSpec {
+  std::string name;
+  WallShape shape = WallShape::plane;
+  std::string material;  // empty: the material of the first particle material
+  // plane: point + normal (normal points towards the particles)
+  // disk: point = centre, normal = axis, radius
+  // cylinder: point = centre of the bottom end, normal = axis (bottom -> top), radius, length
+  Vec3 point_m;
+  Vec3 normal{0.0, 0.0, 1.0};
+  double radius_m = 0.0;
+  double length_m = 0.0;
+  CylinderSide side = CylinderSide::inside;  // cylinder only
+  bool cap_bottom = false;                   // cylinder only
+  bool cap_top = false;                      // cylinder only
+  MotionSpec motion;
+  SourceLocation where;
+};
+
+enum class RegionShape { box, cylinder, annulus };
+
+/// An insertion region. box: min/max corners. cylinder and annulus: base centre,
+/// axis (unit), length, outer radius and (annulus) inner radius.
+struct RegionSpec {
+  RegionShape shape = RegionShape::box;
+  Vec3 min_m, max_m;
+  Vec3 base_m;
+  Vec3 axis{0.0, 0.0, 1.0};
+  double length_m = 0.0;
+  double radius_m = 0.0;
+  double inner_radius_m = 0.0;
+  SourceLocation where;
+};
+
+struct SizeClassSpec {
+  double radius_m = 0.0;
+  double fraction = 1.0;  // share of the class, by number or by mass (InsertionSpec)
+};
+
+enum class InsertAmount { count, solid_fraction, mass };
+
+/// A random, non-overlapping, dynamic insertion (or a CSV file of particles).
+struct InsertionSpec {
+  std::string name;
+  std::string region_tag;  // particles carry this tag; insertions may share one
+  std::string material;
+  RegionSpec region;
+  std::vector<SizeClassSpec> sizes;  // discrete size distribution (one entry: single size)
+  bool fractions_by_mass = false;
+  InsertAmount amount_kind = InsertAmount::count;
+  double amount = 0.0;   // count, solid fraction (0..1) or mass in kg
+  double rate_per_s = 0.0;          // particles per second; 0 = everything at the first attempt
+  double interval_s = 0.0;          // time between insertion attempts; 0 = builder's default
+  Vec3 initial_velocity_m_per_s;
+  std::string stage;                // stage during which it inserts; empty = the first stage
+  std::string from_file;            // CSV of x,y,z,radius[,vx,vy,vz][,temperature]; region unused
+  SourceLocation where;
+};
+
+/// Temporary change of contact properties during a stage (e.g. friction 0 while filling).
+struct OverrideSpec {
+  std::string material_a, material_b;  // both empty: every pair
+  std::optional<double> restitution, sliding_friction, rolling_friction;
+  SourceLocation where;
+};
+
+enum class StageEnd { time, settled };
+
+struct StageSpec {
+  std::string name;
+  StageEnd end = StageEnd::time;
+  double duration_s = 0.0;  // end == time
+  // end == settled: mean kinetic energy per particle (translational + rotational)
+  // below the threshold, checked after min_duration_s and after this stage's insertions
+  // have finished; failing to settle within max_duration_s fails the run.
+  double settled_kinetic_energy_J = 0.0;
+  double min_duration_s = 0.0;
+  double max_duration_s = std::numeric_limits<double>::infinity();
+  std::vector<OverrideSpec> overrides;
+  SourceLocation where;
+};
+
+struct OutputSpec {
+  double interval_s = 0.0;        // time-series sampling interval; 0 = 100 samples per stage
+  double progress_interval_s = 2.0;  // wall-clock seconds between progress lines
+};
+
+struct DomainSpec {
+  Vec3 min_m, max_m;
+  SourceLocation where;
+};
+
+struct ScenarioSpec {
+  std::string name;
+  std::string file;          // path of the scenario file
+  std::string description;
+  std::uint64_t seed = 1;
+  Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
+  DomainSpec domain;
+  double time_step_s = 0.0;         // 0 = rayleigh_fraction x Rayleigh time
+  double rayleigh_fraction = 0.2;
+  double max_rayleigh_fraction = 0.5;  // a larger requested step is refused
+  double neighbor_skin_m = 0.0;        // 0 = builder's default (0.1 x smallest diameter)
+  std::vector<MaterialSpec> materials;
+  std::vector<InteractionSpec> interactions;
+  std::vector<WallSpec> walls;
+  std::vector<InsertionSpec> insertions;
+  std::vector<StageSpec> stages;
+  OutputSpec output;
+};
+
+}  // namespace regodem

@@ -1,0 +1,73 @@
+#pragma once
+// What a running scenario reports to whoever watches it (the command line's progress
+// display, the CSV and summary writers). The simulation layer calls these hooks; it
+// never prints or writes files itself.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace regodem {
+
+struct StageInfo {
+  std::string name;
+  std::size_t index = 0;   // 0-based
+  std::size_t count = 0;   // number of stages
+  double start_time_s = 0.0;
+  /// Simulated time at which the stage ends if it runs to a time limit; for a
+  /// "settled" stage this is its max_duration limit (may be infinite).
+  double planned_end_time_s = 0.0;
+  bool ends_when_settled = false;
+};
+
+struct ProgressSnapshot {
+  StageInfo stage;
+  double time_s = 0.0;
+  std::uint64_t step = 0;
+  std::size_t particles = 0;
+  double wall_s = 0.0;               // since the run started
+  double steps_per_s = 0.0;          // recent rate
+  double particle_steps_per_s = 0.0; // recent rate
+  double estimated_remaining_s = -1; // wall seconds left in this stage; < 0 unknown
+  double kinetic_energy_per_particle_J = 0.0;
+};
+
+/// One named, unit-carrying column of the time series; the header is "name [unit]".
+struct SeriesColumn {
+  std::string name;
+  std::string unit;  // "-" for dimensionless counts
+};
+
+enum class StageResult { finished, failed, interrupted };
+
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  /// Called once before the first stage with the time-series columns.
+  virtual void columns(const std::vector<SeriesColumn>& /*columns*/) {}
+  virtual void stage_started(const StageInfo& /*stage*/) {}
+  /// Called every few hundred steps; the observer decides how often to show it.
+  virtual void progress(const ProgressSnapshot& /*snapshot*/) {}
+  /// One row of the time series, values in the order of columns().
+  virtual void sample(const std::vector<double>& /*row*/) {}
+  /// A message worth telling the user (an insertion region that is full, ...).
+  virtual void notice(const std::string& /*message*/) {}
+  virtual void stage_finished(const StageInfo& /*stage*/, StageResult /*result*/,
+                              const std::string& /*message*/) {}
+};
+
+struct RunOutcome {
+  bool completed = false;            // every stage finished
+  bool interrupted = false;          // stopped by a signal
+  std::string message;               // why it stopped, when not completed
+  std::size_t stages_finished = 0;
+  std::size_t particles = 0;
+  std::uint64_t steps = 0;
+  double simulated_time_s = 0.0;
+  double wall_s = 0.0;
+  double particle_steps_per_s = 0.0;  // sum of particles over steps / wall time
+  double time_step_s = 0.0;
+  int threads = 1;
+};
+
+}  // namespace regodem

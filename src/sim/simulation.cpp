@@ -1,0 +1,291 @@
+#include "sim/simulation.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact/contact_law.hpp"
+#include "core/error.hpp"
+
+namespace regodem {
+
+Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const SimulationSettings& settings)
+    : materials(std::move(materials_in)),
+      walls(std::move(walls_in)),
+      settings_(settings),
+      contact_parameters_(materials),
+      grid_(settings.domain.min_m, settings.domain.max_m,
+            2.0 * settings.min_particle_radius_m + settings.neighbor_skin_m) {
+  spills_.resize(settings_.threads);
+  wall_force_by_thread_.assign(settings_.threads, std::vector<Vec3>(walls.bodies.size()));
+  wall_torque_by_thread_.assign(settings_.threads, std::vector<Vec3>(walls.bodies.size()));
+}
+
+void Simulation::add_particle(const NewParticle& p) {
+  particles.add(p);
+  forces_current_ = false;
+}
+
+void Simulation::refresh_contact_parameters() {
+  contact_parameters_ = ContactParameterTable(materials);
+  forces_current_ = false;
+}
+
+void Simulation::rebuild_neighbors() {
+  neighbors_.rebuild(particles, walls, grid_, settings_.neighbor_skin_m, settings_.threads);
+  walls.mark_neighbor_build();
+}
+
+void Simulation::ensure_forces() {
+  if (forces_current_) return;
+  if (neighbors_.needs_rebuild(particles, walls, settings_.neighbor_skin_m)) rebuild_neighbors();
+  compute_forces();
+  forces_current_ = true;
+}
+
+void Simulation::step() {
+  ensure_forces();
+  first_half_kick_and_drift();
+  walls.advance(time_s_, settings_.time_step_s);
+  time_s_ += settings_.time_step_s;
+  ++step_;
+  if (neighbors_.needs_rebuild(particles, walls, settings_.neighbor_skin_m)) rebuild_neighbors();
+  compute_forces();
+  second_half_kick();
+}
+
+void Simulation::advance(std::uint64_t steps) {
+  for (std::uint64_t s = 0; s < steps; ++s) step();
+}
+
+void Simulation::first_half_kick_and_drift() {
+  const double dt = settings_.time_step_s, half_dt = 0.5 * dt;
+  const std::size_t n = particles.size();
+  int escaped = 0;
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) reduction(max : escaped)
+  for (std::size_t i = 0; i < n; ++i) {
+    particles.velocity_m_per_s[i] += particles.force_N[i] * (half_dt * particles.inv_mass_per_kg[i]);
+    particles.angular_velocity_rad_per_s[i] += particles.torque_N_m[i] * (half_dt * particles.inv_inertia[i]);
+    particles.position_m[i] += particles.velocity_m_per_s[i] * dt;
+    if (!settings_.domain.contains(particles.position_m[i])) escaped = 1;  // also false for NaN
+  }
+  if (escaped) report_blow_up("left the domain");
+}
+
+void Simulation::second_half_kick() {
+  const double dt = settings_.time_step_s, half_dt = 0.5 * dt;
+  const std::size_t n = particles.size();
+  int too_fast = 0;
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) reduction(max : too_fast)
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3& v = particles.velocity_m_per_s[i];
+    v += particles.force_N[i] * (half_dt * particles.inv_mass_per_kg[i]);
+    particles.angular_velocity_rad_per_s[i] += particles.torque_N_m[i] * (half_dt * particles.inv_inertia[i]);
+    // Moving more than half a radius per step means the contacts are no longer resolved.
+    const double limit = 0.5 * particles.radius_m[i];
+    if (!(norm2(v) * dt * dt <= limit * limit)) too_fast = 1;  // also true for NaN
+  }
+  if (too_fast) report_blow_up("moved more than half its radius in one step");
+}
+
+void Simulation::report_blow_up(const std::string& what) const {
+  const double dt = settings_.time_step_s;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Vec3& x = particles.position_m[i];
+    const Vec3& v = particles.velocity_m_per_s[i];
+    const double speed = norm(v);
+    const bool bad_state = !std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z);
+    const bool escaped = !settings_.domain.contains(x);
+    const bool too_fast = speed * dt > 0.5 * particles.radius_m[i];
+    if (!(bad_state || escaped || too_fast)) continue;
+    const std::string state = bad_state ? "has a non-finite position or velocity" : what;
+    throw SimulationError(fmt::format(
+        "particle {} {} at t = {:.6g} s (step {}): position ({:.6g}, {:.6g}, {:.6g}) m, speed {:.6g} m/s, "
+        "radius {:.6g} m. {}",
+        particles.id[i], state, time_s_, step_, x.x, x.y, x.z, speed, particles.radius_m[i],
+        escaped && !bad_state && !too_fast
+            ? "If it fell through an open side, close the walls or enlarge the domain; if it was "
+              "thrown out, try a smaller time step (rayleigh_fraction or time_step)."
+            : fmt::format("The step of {:.3g} s is too large for these contacts: try half of it "
+                          "(time_step or rayleigh_fraction), a softer material, or check for overlaps "
+                          "in the initial packing.",
+                          dt)));
+  }
+  throw SimulationError(fmt::format("the simulation became unstable at t = {:.6g} s (step {})", time_s_, step_));
+}
+
+void Simulation::compute_forces() {
+  const std::size_t n = particles.size();
+  const int threads = settings_.threads;
+  const double dt = settings_.time_step_s;
+  const Vec3 gravity = settings_.gravity_m_per_s2;
+  const double now = time_s_;
+  const std::size_t n_bodies = walls.bodies.size();
+  std::uint64_t particle_contacts = 0, wall_contacts = 0;
+
+  ParticleStore& p = particles;
+  NeighborList& nl = neighbors_;
+  const ContactParameterTable& table = contact_parameters_;
+
+#pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
+  {
+    const int t = omp_get_thread_num();
+    const std::uint32_t begin = nl.thread_begin[t], end = nl.thread_begin[t + 1];
+    for (std::uint32_t i = begin; i < end; ++i) {
+      p.force_N[i] = gravity * p.mass_kg[i];
+      p.torque_N_m[i] = {};
+    }
+    std::vector<Spill>& spill = spills_[t];
+    spill.clear();
+    std::vector<Vec3>& wall_force = wall_force_by_thread_[t];
+    std::vector<Vec3>& wall_torque = wall_torque_by_thread_[t];
+    std::fill(wall_force.begin(), wall_force.end(), Vec3{});
+    std::fill(wall_torque.begin(), wall_torque.end(), Vec3{});
+#pragma omp barrier
+
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const Vec3 xi = p.position_m[i], vi = p.velocity_m_per_s[i], wi = p.angular_velocity_rad_per_s[i];
+      const double ri = p.radius_m[i], inv_mi = p.inv_mass_per_kg[i], inv_ii = p.inv_inertia[i];
+      const MaterialIndex mat_i = p.material[i];
+      Vec3 force_i, torque_i;
+
+      for (std::uint32_t k = nl.offset[i]; k < nl.offset[i + 1]; ++k) {
+        const std::uint32_t j = nl.partner[k];
+        const Vec3 d = p.position_m[j] - xi;
+        const double rj = p.radius_m[j];
+        const double sum_r = ri + rj;
+        const double dist2 = norm2(d);
+        if (dist2 >= sum_r * sum_r) {
+          nl.tangential_history_m[k] = {};
+          continue;
+        }
+        ++particle_contacts;
+        const double dist = std::sqrt(dist2);
+        const Vec3 normal = d / dist;
+        const double overlap = sum_r - dist;
+        const double arm_i = ri - 0.5 * overlap, arm_j = rj - 0.5 * overlap;
+        const Vec3 wj = p.angular_velocity_rad_per_s[j];
+        ContactGeometry c;
+        c.normal = normal;
+        c.overlap_m = overlap;
+        c.effective_radius_m = ri * rj / sum_r;
+        c.effective_mass_kg = 1.0 / (inv_mi + p.inv_mass_per_kg[j]);
+        c.relative_velocity_m_per_s = vi - p.velocity_m_per_s[j] + cross(wi * arm_i + wj * arm_j, normal);
+        c.relative_angular_velocity_rad_per_s = wi - wj;
+        c.inv_inertia_sum = inv_ii + p.inv_inertia[j];
+        c.time_step_s = dt;
+        const ContactForces f =
+            HertzMindlinLaw::evaluate(table(mat_i, p.material[j]), c, nl.tangential_history_m[k]);
+        const Vec3 lever = cross(normal, f.tangential_force_on_i_N);
+        force_i += f.force_on_i_N;
+        torque_i += lever * arm_i + f.rolling_torque_on_i_N_m;
+        const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
+        if (j >= begin && j < end) {
+          p.force_N[j] -= f.force_on_i_N;
+          p.torque_N_m[j] += torque_j;
+        } else {
+          spill.push_back({j, -f.force_on_i_N, torque_j});
+        }
+      }
+
+      for (std::uint32_t k = nl.wall_offset[i]; k < nl.wall_offset[i + 1]; ++k) {
+        const WallPrimitive& wall = walls.primitives[nl.wall_primitive[k]];
+        const WallProximity prox = closest_wall_point(wall, xi);
+        if (!prox.candidate || prox.distance_m >= ri) {
+          nl.wall_tangential_history_m[k] = {};
+          continue;
+        }
+        ++wall_contacts;
+        const WallMotion& motion = walls.bodies[wall.body].motion;
+        const Vec3 wall_omega = motion.active_at(now) ? motion.angular_velocity_rad_per_s : Vec3{};
+        const double arm = prox.distance_m;
+        ContactGeometry c;
+        c.normal = prox.normal;
+        c.overlap_m = ri - prox.distance_m;
+        c.effective_radius_m = ri;
+        c.effective_mass_kg = 1.0 / inv_mi;
+        c.relative_velocity_m_per_s =
+            vi + cross(wi, prox.normal * arm) - motion.surface_velocity(prox.contact_point_m, now);
+        c.relative_angular_velocity_rad_per_s = wi - wall_omega;
+        c.inv_inertia_sum = inv_ii;
+        c.time_step_s = dt;
+        const ContactForces f =
+            HertzMindlinLaw::evaluate(table(mat_i, wall.material), c, nl.wall_tangential_history_m[k]);
+        force_i += f.force_on_i_N;
+        torque_i += cross(prox.normal, f.tangential_force_on_i_N) * arm + f.rolling_torque_on_i_N_m;
+        wall_force[wall.body] -= f.force_on_i_N;
+        wall_torque[wall.body] +=
+            cross(prox.contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
+      }
+      p.force_N[i] += force_i;
+      p.torque_N_m[i] += torque_i;
+    }
+#pragma omp barrier
+    // Contributions to particles of other threads, applied by their owners in thread
+    // order: no races, and the sum order is fixed for a given thread count.
+    for (int s = 0; s < threads; ++s)
+      for (const Spill& e : spills_[s])
+        if (e.particle >= begin && e.particle < end) {
+          p.force_N[e.particle] += e.force_N;
+          p.torque_N_m[e.particle] += e.torque_N_m;
+        }
+  }
+
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    walls.bodies[b].force_N = {};
+    walls.bodies[b].torque_N_m = {};
+    for (int t = 0; t < threads; ++t) {
+      walls.bodies[b].force_N += wall_force_by_thread_[t][b];
+      walls.bodies[b].torque_N_m += wall_torque_by_thread_[t][b];
+    }
+  }
+  stats_.particle_contacts = particle_contacts;
+  stats_.wall_contacts = wall_contacts;
+  (void)n;
+}
+
+double Simulation::translational_kinetic_energy_J() const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (particles.inv_mass_per_kg[i] > 0.0) sum += 0.5 * particles.mass_kg[i] * norm2(particles.velocity_m_per_s[i]);
+  return sum;
+}
+
+double Simulation::rotational_kinetic_energy_J() const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (particles.inv_inertia[i] > 0.0)
+      sum += 0.5 * norm2(particles.angular_velocity_rad_per_s[i]) / particles.inv_inertia[i];
+  return sum;
+}
+
+double Simulation::gravitational_potential_energy_J() const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    sum -= particles.mass_kg[i] * dot(settings_.gravity_m_per_s2, particles.position_m[i]);
+  return sum;
+}
+
+double Simulation::max_speed_m_per_s() const {
+  double largest2 = 0.0;
+  for (const Vec3& v : particles.velocity_m_per_s) largest2 = std::max(largest2, norm2(v));
+  return std::sqrt(largest2);
+}
+
+double Simulation::max_overlap_fraction() const {
+  double largest = 0.0;
+  const NeighborList& nl = neighbors_;
+  if (nl.offset.size() != particles.size() + 1) return 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    for (std::uint32_t k = nl.offset[i]; k < nl.offset[i + 1]; ++k) {
+      const std::uint32_t j = nl.partner[k];
+      const double overlap =
+          particles.radius_m[i] + particles.radius_m[j] - norm(particles.position_m[j] - particles.position_m[i]);
+      largest = std::max(largest, overlap / (2.0 * std::min(particles.radius_m[i], particles.radius_m[j])));
+    }
+  return largest;
+}
+
+}  // namespace regodem

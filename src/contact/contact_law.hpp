@@ -34,7 +34,7 @@ struct ContactLaw {
         Damping::coefficient(p.damping_factor, tangential_stiffness, c.effective_mass_kg);
     const Vec3 tangential = Tangential::evaluate(
         tangential_history_m, c.normal, tangential_velocity, tangential_stiffness, tangential_damping,
-        p.sliding_friction * std::max(normal_force, 0.0), c.time_step_s);
+        p.sliding_friction * std::max(normal_force, 0.0), c.slip_time_s);
 
     ContactForces out;
     out.elastic_normal_force_N = normal.elastic_force_N;

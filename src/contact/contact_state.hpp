@@ -14,6 +14,9 @@ struct ContactGeometry {
   Vec3 relative_angular_velocity_rad_per_s;  // omega_i - omega_j
   double inv_inertia_sum = 0.0;     // 1/I_i + 1/I_j (1/I_i for a wall), for the rolling cap
   double time_step_s = 0.0;
+  // Time over which the tangential spring accumulates slip: the step, or 0 when forces
+  // are re-evaluated at an unchanged state (after an insertion) so no slip is counted twice.
+  double slip_time_s = 0.0;
 };
 
 struct ContactForces {

@@ -41,7 +41,7 @@ void Simulation::rebuild_neighbors() {
 void Simulation::ensure_forces() {
   if (forces_current_) return;
   if (neighbors_.needs_rebuild(particles, walls, settings_.neighbor_skin_m)) rebuild_neighbors();
-  compute_forces();
+  compute_forces(0.0);
   forces_current_ = true;
 }
 
@@ -52,7 +52,7 @@ void Simulation::step() {
   time_s_ += settings_.time_step_s;
   ++step_;
   if (neighbors_.needs_rebuild(particles, walls, settings_.neighbor_skin_m)) rebuild_neighbors();
-  compute_forces();
+  compute_forces(settings_.time_step_s);
   second_half_kick();
 }
 
@@ -116,7 +116,7 @@ void Simulation::report_blow_up(const std::string& what) const {
   throw SimulationError(fmt::format("the simulation became unstable at t = {:.6g} s (step {})", time_s_, step_));
 }
 
-void Simulation::compute_forces() {
+void Simulation::compute_forces(double slip_time_s) {
   const std::size_t n = particles.size();
   const int threads = settings_.threads;
   const double dt = settings_.time_step_s;
@@ -176,6 +176,7 @@ void Simulation::compute_forces() {
         c.relative_angular_velocity_rad_per_s = wi - wj;
         c.inv_inertia_sum = inv_ii + p.inv_inertia[j];
         c.time_step_s = dt;
+        c.slip_time_s = slip_time_s;
         const ContactForces f =
             HertzMindlinLaw::evaluate(table(mat_i, p.material[j]), c, nl.tangential_history_m[k]);
         const Vec3 lever = cross(normal, f.tangential_force_on_i_N);
@@ -211,6 +212,7 @@ void Simulation::compute_forces() {
         c.relative_angular_velocity_rad_per_s = wi - wall_omega;
         c.inv_inertia_sum = inv_ii;
         c.time_step_s = dt;
+        c.slip_time_s = slip_time_s;
         const ContactForces f =
             HertzMindlinLaw::evaluate(table(mat_i, wall.material), c, nl.wall_tangential_history_m[k]);
         force_i += f.force_on_i_N;

@@ -1,0 +1,240 @@
+#include "sim/stage_runner.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace regodem {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+constexpr std::uint64_t kCheckEverySteps = 64;
+constexpr double kProgressEveryWallSeconds = 0.25;
+
+/// Applies a stage's overrides to the pair table; returns the table to restore.
+MaterialTable apply_overrides(Simulation& sim, const std::vector<PairOverride>& overrides) {
+  MaterialTable original = sim.materials;
+  const std::size_t n = sim.materials.size();
+  for (const PairOverride& o : overrides) {
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a; b < n; ++b) {
+        const bool every_pair = o.material_a < 0;
+        const bool this_pair = (static_cast<int>(a) == o.material_a && static_cast<int>(b) == o.material_b) ||
+                               (static_cast<int>(b) == o.material_a && static_cast<int>(a) == o.material_b);
+        if (!every_pair && !this_pair) continue;
+        const auto ma = static_cast<MaterialIndex>(a), mb = static_cast<MaterialIndex>(b);
+        PairProperties p = sim.materials.pair(ma, mb);
+        if (o.restitution) p.restitution = *o.restitution;
+        if (o.sliding_friction) p.sliding_friction = *o.sliding_friction;
+        if (o.rolling_friction) p.rolling_friction = *o.rolling_friction;
+        sim.materials.set_pair(ma, mb, p);
+      }
+  }
+  if (!overrides.empty()) sim.refresh_contact_parameters();
+  return original;
+}
+
+double kinetic_energy_per_particle(const Simulation& sim) {
+  if (sim.particles.empty()) return 0.0;
+  return (sim.translational_kinetic_energy_J() + sim.rotational_kinetic_energy_J()) /
+         static_cast<double>(sim.particles.size());
+}
+
+}  // namespace
+
+std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
+  std::vector<SeriesColumn> columns = {
+      {"time", "s"},
+      {"step", "-"},
+      {"stage", "-"},
+      {"particles", "-"},
+      {"kinetic_energy", "J"},
+      {"rotational_kinetic_energy", "J"},
+      {"potential_energy", "J"},
+      {"max_speed", "m/s"},
+      {"particle_contacts", "-"},
+      {"wall_contacts", "-"},
+      {"coordination_number", "-"},
+      {"max_overlap_fraction", "-"},
+  };
+  for (const WallBody& wall : sim.walls.bodies) {
+    for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".force_" + axis, "N"});
+    for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".torque_" + axis, "N m"});
+  }
+  return columns;
+}
+
+std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_index) {
+  const auto& stats = sim.contact_statistics();
+  const double n = static_cast<double>(sim.particles.size());
+  std::vector<double> row = {
+      sim.time_s(),
+      static_cast<double>(sim.step_count()),
+      static_cast<double>(stage_index),
+      n,
+      sim.translational_kinetic_energy_J() + sim.rotational_kinetic_energy_J(),
+      sim.rotational_kinetic_energy_J(),
+      sim.gravitational_potential_energy_J(),
+      sim.max_speed_m_per_s(),
+      static_cast<double>(stats.particle_contacts),
+      static_cast<double>(stats.wall_contacts),
+      n > 0 ? (2.0 * static_cast<double>(stats.particle_contacts) + static_cast<double>(stats.wall_contacts)) / n : 0.0,
+      sim.max_overlap_fraction(),
+  };
+  for (const WallBody& wall : sim.walls.bodies) {
+    row.insert(row.end(), {wall.force_N.x, wall.force_N.y, wall.force_N.z});
+    row.insert(row.end(), {wall.torque_N_m.x, wall.torque_N_m.y, wall.torque_N_m.z});
+  }
+  return row;
+}
+
+RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
+                      const std::atomic<bool>& stop_requested) {
+  RunOutcome outcome;
+  outcome.threads = sim.threads();
+  outcome.time_step_s = sim.time_step_s();
+  const auto run_start = Clock::now();
+  double particle_steps = 0.0;
+  Rng rng(plan.seed);
+  observer.columns(time_series_columns(sim));
+  const double dt = sim.time_step_s();
+
+  auto finish = [&](bool completed, const std::string& message) {
+    outcome.completed = completed;
+    outcome.message = message;
+    outcome.particles = sim.particles.size();
+    outcome.steps = sim.step_count();
+    outcome.simulated_time_s = sim.time_s();
+    outcome.wall_s = seconds_since(run_start);
+    outcome.particle_steps_per_s = outcome.wall_s > 0.0 ? particle_steps / outcome.wall_s : 0.0;
+    return outcome;
+  };
+
+  for (std::size_t s = 0; s < plan.stages.size(); ++s) {
+    const Stage& stage = plan.stages[s];
+    StageInfo info;
+    info.name = stage.name;
+    info.index = s;
+    info.count = plan.stages.size();
+    info.start_time_s = sim.time_s();
+    info.ends_when_settled = stage.until_settled;
+    info.planned_end_time_s = info.start_time_s + (stage.until_settled ? stage.max_duration_s : stage.duration_s);
+    observer.stage_started(info);
+    const MaterialTable original_pairs = apply_overrides(sim, stage.overrides);
+
+    std::vector<Insertion*> active;
+    for (Insertion& ins : plan.insertions)
+      if (ins.stage == s) {
+        ins.start(sim.time_s());
+        active.push_back(&ins);
+      }
+
+    const std::uint64_t stage_first_step = sim.step_count();
+    const std::uint64_t planned_steps =
+        stage.until_settled ? 0 : static_cast<std::uint64_t>(std::llround(stage.duration_s / dt));
+    const std::uint64_t min_steps = static_cast<std::uint64_t>(std::llround(stage.min_duration_s / dt));
+    const double max_steps_d = stage.max_duration_s / dt;
+    double sample_interval = plan.sample_interval_s;
+    if (sample_interval <= 0.0) sample_interval = stage.until_settled ? 0.01 : stage.duration_s / 100.0;
+    double next_sample_s = sim.time_s();
+    auto last_progress_clock = Clock::now();
+    std::uint64_t last_progress_step = sim.step_count();
+    double steps_per_s = 0.0;
+    std::string failure;
+    StageResult result = StageResult::finished;
+
+    auto sample = [&] {
+      observer.sample(time_series_row(sim, s));
+      next_sample_s += sample_interval;
+    };
+
+    try {
+      for (;;) {
+        const std::uint64_t done = sim.step_count() - stage_first_step;
+        bool insertions_done = true;
+        for (Insertion* ins : active) {
+          if (!ins->finished && sim.time_s() + 0.5 * dt >= ins->next_attempt_s()) {
+            const InsertionReport r = insert_due_particles(sim, *ins, rng);
+            if (r.placed < r.requested)
+              observer.notice(fmt::format("insertion '{}': placed {} of {} particles at t = {:.4g} s; the region is full{}",
+                                          ins->name, r.placed, r.requested, sim.time_s(),
+                                          ins->finished ? fmt::format(" ({} of {} in all)", ins->inserted, ins->target_count) : ", will retry"));
+          }
+          insertions_done = insertions_done && ins->finished;
+        }
+        if (sim.time_s() + 0.5 * dt >= next_sample_s) sample();
+
+        if (!stage.until_settled && done >= planned_steps) break;
+        if (done % kCheckEverySteps == 0) {
+          if (stage.until_settled && insertions_done && done >= min_steps &&
+              kinetic_energy_per_particle(sim) < stage.settled_kinetic_energy_J)
+            break;
+          if (stage.until_settled && static_cast<double>(done) >= max_steps_d) {
+            failure = fmt::format(
+                "stage '{}' did not settle within its max_duration of {:.4g} s: kinetic energy per particle is "
+                "{:.3g} J, the threshold {:.3g} J. Raise max_duration or the threshold.",
+                stage.name, stage.max_duration_s, kinetic_energy_per_particle(sim), stage.settled_kinetic_energy_J);
+            result = StageResult::failed;
+            break;
+          }
+          if (stop_requested.load(std::memory_order_relaxed)) {
+            result = StageResult::interrupted;
+            failure = fmt::format("interrupted during stage '{}' at t = {:.6g} s", stage.name, sim.time_s());
+            break;
+          }
+          const double since = seconds_since(last_progress_clock);
+          if (since >= kProgressEveryWallSeconds) {
+            steps_per_s = static_cast<double>(sim.step_count() - last_progress_step) / since;
+            last_progress_clock = Clock::now();
+            last_progress_step = sim.step_count();
+            ProgressSnapshot snap;
+            snap.stage = info;
+            snap.time_s = sim.time_s();
+            snap.step = sim.step_count();
+            snap.particles = sim.particles.size();
+            snap.wall_s = seconds_since(run_start);
+            snap.steps_per_s = steps_per_s;
+            snap.particle_steps_per_s = steps_per_s * static_cast<double>(sim.particles.size());
+            snap.estimated_remaining_s =
+                stage.until_settled || steps_per_s <= 0.0
+                    ? -1.0
+                    : static_cast<double>(planned_steps - done) / steps_per_s;
+            snap.kinetic_energy_per_particle_J = kinetic_energy_per_particle(sim);
+            observer.progress(snap);
+          }
+        }
+        sim.step();
+        particle_steps += static_cast<double>(sim.particles.size());
+      }
+    } catch (const SimulationError& e) {
+      result = StageResult::failed;
+      failure = fmt::format("stage '{}' failed: {}", stage.name, e.what());
+    }
+    if (result == StageResult::finished) {
+      sample();
+      for (Insertion* ins : active)
+        if (ins->inserted < ins->target_count && ins->from_file.empty())
+          observer.notice(fmt::format("insertion '{}' placed {} of {} particles during stage '{}'", ins->name,
+                                      ins->inserted, ins->target_count, stage.name));
+    }
+    sim.materials = original_pairs;
+    sim.refresh_contact_parameters();
+    observer.stage_finished(info, result, failure);
+    if (result != StageResult::finished) {
+      outcome.interrupted = result == StageResult::interrupted;
+      return finish(false, failure);
+    }
+    ++outcome.stages_finished;
+  }
+  return finish(true, "");
+}
+
+}  // namespace regodem

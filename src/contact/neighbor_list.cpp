@@ -7,12 +7,11 @@
 
 namespace regodem {
 
-CellGrid::CellGrid(const Vec3& min_m, const Vec3& max_m, double min_cell_size_m) : origin_m(min_m) {
+CellGrid::CellGrid(const Vec3& min_m, const Vec3& max_m, double min_cell_size_m, double max_cells)
+    : origin_m(min_m) {
   const Vec3 extent = max_m - min_m;
-  // Cap the cell count so a tiny particle in a huge domain cannot exhaust memory.
-  constexpr double kMaxCells = 64.0e6;
   double size = min_cell_size_m;
-  while ((extent.x / size) * (extent.y / size) * (extent.z / size) > kMaxCells) size *= 1.25;
+  while ((extent.x / size) * (extent.y / size) * (extent.z / size) > max_cells) size *= 1.1;
   auto cells_along = [size](double length) { return std::max(1, static_cast<int>(std::floor(length / size))); };
   nx = cells_along(extent.x);
   ny = cells_along(extent.y);
@@ -50,12 +49,12 @@ void NeighborList::save_history(const ParticleStore& particles) {
   }
 }
 
-void NeighborList::restore_history(const ParticleStore& particles) {
+void NeighborList::restore_history(const ParticleStore& particles, int threads) {
   const std::size_t n = particles.size();
   tangential_history_m.assign(partner.size(), Vec3{});
   wall_tangential_history_m.assign(wall_primitive.size(), Vec3{});
   if (saved_.empty()) return;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
     const ParticleId owner = particles.id[i];
     if (2 * static_cast<std::size_t>(owner) + 1 >= saved_begin_.size()) continue;  // inserted since
@@ -152,7 +151,7 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     std::copy(thread_partners_[t].begin(), thread_partners_[t].end(), partner.begin() + offset[begin]);
     std::copy(thread_walls_[t].begin(), thread_walls_[t].end(), wall_primitive.begin() + wall_offset[begin]);
   }
-  restore_history(particles);
+  restore_history(particles, threads);
 
   // Split owners between threads by estimated force-pass work.
   thread_begin.assign(threads + 1, static_cast<std::uint32_t>(n));
@@ -168,15 +167,23 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   ++rebuilds_;
 }
 
-bool NeighborList::needs_rebuild(const ParticleStore& particles, const WallSet& walls, double skin_m) const {
+bool NeighborList::needs_rebuild(const ParticleStore& particles, const WallSet& walls, double skin_m,
+                                 int threads) const {
   const std::size_t n = particles.size();
   if (position_at_build_m_.size() != n || offset.size() != n + 1) return true;
   double max_move2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max_move2)
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096) reduction(max : max_move2)
   for (std::size_t i = 0; i < n; ++i)
     max_move2 = std::max(max_move2, norm2(particles.position_m[i] - position_at_build_m_[i]));
-  const double max_move = std::sqrt(max_move2);
-  return 2.0 * max_move > skin_m || max_move + walls.max_displacement_since_build_m() > skin_m;
+  return needs_rebuild(n, std::sqrt(max_move2), walls, skin_m);
+}
+
+bool NeighborList::needs_rebuild(std::size_t particle_count, double max_displacement_m, const WallSet& walls,
+                                 double skin_m) const {
+  if (position_at_build_m_.size() != particle_count || offset.size() != particle_count + 1) return true;
+  // Two particles closing on each other may each have moved max_displacement_m.
+  return 2.0 * max_displacement_m > skin_m ||
+         max_displacement_m + walls.max_displacement_since_build_m() > skin_m;
 }
 
 }  // namespace regodem

@@ -21,7 +21,9 @@ struct CellGrid {
   int nx = 1, ny = 1, nz = 1;
 
   CellGrid() = default;
-  CellGrid(const Vec3& min_m, const Vec3& max_m, double min_cell_size_m);
+  /// Cells at least min_cell_size_m wide, and no more than max_cells of them (a sparse
+  /// domain then gets larger cells rather than a huge, mostly empty grid).
+  CellGrid(const Vec3& min_m, const Vec3& max_m, double min_cell_size_m, double max_cells);
   std::size_t cell_count() const { return static_cast<std::size_t>(nx) * ny * nz; }
   /// Cell coordinates of a point, clamped into the grid.
   void coordinates(const Vec3& x, int& ix, int& iy, int& iz) const;
@@ -54,14 +56,19 @@ class NeighborList {
 
   /// True once some particle has moved more than half the skin since the last build,
   /// or a particle and a wall may have closed the skin between them.
-  bool needs_rebuild(const ParticleStore& particles, const WallSet& walls, double skin_m) const;
+  bool needs_rebuild(const ParticleStore& particles, const WallSet& walls, double skin_m, int threads) const;
+  /// The same decision when the caller already knows the largest particle displacement
+  /// since the build (the integrator measures it while it moves the particles).
+  bool needs_rebuild(std::size_t particle_count, double max_displacement_m, const WallSet& walls,
+                     double skin_m) const;
+  const std::vector<Vec3>& positions_at_build_m() const { return position_at_build_m_; }
 
   std::size_t pair_count() const { return partner.size(); }
   std::uint64_t rebuild_count() const { return rebuilds_; }
 
  private:
   void save_history(const ParticleStore& particles);
-  void restore_history(const ParticleStore& particles);
+  void restore_history(const ParticleStore& particles, int threads);
 
   std::vector<Vec3> position_at_build_m_;
   std::uint64_t rebuilds_ = 0;

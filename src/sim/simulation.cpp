@@ -15,9 +15,7 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
     : materials(std::move(materials_in)),
       walls(std::move(walls_in)),
       settings_(settings),
-      contact_parameters_(materials),
-      grid_(settings.domain.min_m, settings.domain.max_m,
-            2.0 * settings.min_particle_radius_m + settings.neighbor_skin_m) {
+      contact_parameters_(materials) {
   spills_.resize(settings_.threads);
   wall_force_by_thread_.assign(settings_.threads, std::vector<Vec3>(walls.bodies.size()));
   wall_torque_by_thread_.assign(settings_.threads, std::vector<Vec3>(walls.bodies.size()));
@@ -34,24 +32,32 @@ void Simulation::refresh_contact_parameters() {
 }
 
 void Simulation::rebuild_neighbors() {
+  // The grid is sized for the current particle count: the counting sort costs one pass
+  // over the cells, which must stay of the order of the particle count.
+  const double max_cells = 16.0 * static_cast<double>(particles.size()) + 4096.0;
+  if (grid_.cell_count() <= 1 || static_cast<double>(grid_.cell_count()) > max_cells ||
+      static_cast<double>(grid_.cell_count()) < 0.25 * max_cells)
+    grid_ = CellGrid(settings_.domain.min_m, settings_.domain.max_m,
+                     2.0 * settings_.min_particle_radius_m + settings_.neighbor_skin_m, max_cells);
   neighbors_.rebuild(particles, walls, grid_, settings_.neighbor_skin_m, settings_.threads);
   walls.mark_neighbor_build();
 }
 
 void Simulation::ensure_forces() {
   if (forces_current_) return;
-  if (neighbors_.needs_rebuild(particles, walls, settings_.neighbor_skin_m)) rebuild_neighbors();
+  if (neighbors_.needs_rebuild(particles, walls, settings_.neighbor_skin_m, settings_.threads)) rebuild_neighbors();
   compute_forces(0.0);
   forces_current_ = true;
 }
 
 void Simulation::step() {
   ensure_forces();
-  first_half_kick_and_drift();
+  const double max_displacement = first_half_kick_and_drift();
   walls.advance(time_s_, settings_.time_step_s);
   time_s_ += settings_.time_step_s;
   ++step_;
-  if (neighbors_.needs_rebuild(particles, walls, settings_.neighbor_skin_m)) rebuild_neighbors();
+  if (neighbors_.needs_rebuild(particles.size(), max_displacement, walls, settings_.neighbor_skin_m))
+    rebuild_neighbors();
   compute_forces(settings_.time_step_s);
   second_half_kick();
 }
@@ -60,25 +66,30 @@ void Simulation::advance(std::uint64_t steps) {
   for (std::uint64_t s = 0; s < steps; ++s) step();
 }
 
-void Simulation::first_half_kick_and_drift() {
+double Simulation::first_half_kick_and_drift() {
   const double dt = settings_.time_step_s, half_dt = 0.5 * dt;
   const std::size_t n = particles.size();
+  const std::vector<Vec3>& at_build = neighbors_.positions_at_build_m();
   int escaped = 0;
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) reduction(max : escaped)
+  double max_move2 = 0.0;
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) \
+    reduction(max : escaped, max_move2)
   for (std::size_t i = 0; i < n; ++i) {
     particles.velocity_m_per_s[i] += particles.force_N[i] * (half_dt * particles.inv_mass_per_kg[i]);
     particles.angular_velocity_rad_per_s[i] += particles.torque_N_m[i] * (half_dt * particles.inv_inertia[i]);
     particles.position_m[i] += particles.velocity_m_per_s[i] * dt;
     if (!settings_.domain.contains(particles.position_m[i])) escaped = 1;  // also false for NaN
+    max_move2 = std::max(max_move2, norm2(particles.position_m[i] - at_build[i]));
   }
   if (escaped) report_blow_up("left the domain");
+  return std::sqrt(max_move2);
 }
 
 void Simulation::second_half_kick() {
   const double dt = settings_.time_step_s, half_dt = 0.5 * dt;
   const std::size_t n = particles.size();
   int too_fast = 0;
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) reduction(max : too_fast)
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) reduction(max : too_fast)
   for (std::size_t i = 0; i < n; ++i) {
     Vec3& v = particles.velocity_m_per_s[i];
     v += particles.force_N[i] * (half_dt * particles.inv_mass_per_kg[i]);

@@ -75,7 +75,8 @@ class Simulation {
   void rebuild_neighbors();
   /// slip_time_s: dt after a step, 0 when re-evaluating an unchanged state.
   void compute_forces(double slip_time_s);
-  void first_half_kick_and_drift();
+  /// Returns the largest displacement since the last neighbour build.
+  double first_half_kick_and_drift();
   void second_half_kick();
   [[noreturn]] void report_blow_up(const std::string& what) const;
 

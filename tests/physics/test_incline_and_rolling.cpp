@@ -1,0 +1,111 @@
+// Friction on a slope and rolling resistance against the rigid-body results:
+//   sliding block (rotation locked): a = g (sin t - mu_s cos t) when tan t > mu_s, else 0;
+//   rolling sphere without slip:     a = 5/7 g (sin t - mu_r cos t)  (I = 2/5 m R^2);
+//   sphere rolling on a flat plane decelerates at 5/7 mu_r g and stops at v0^2/(2 a).
+// The slope is a horizontal plane under tilted gravity. Time step 0.05 of the Rayleigh
+// time throughout.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "physics_fixtures.hpp"
+
+namespace regodem::testing {
+namespace {
+
+constexpr double kRadius = 1.0e-3;
+constexpr double kG = 9.81;
+
+struct Slope {
+  Simulation sim;
+  double dt;
+};
+
+/// A sphere resting on the plane z = 0 (at its equilibrium overlap) under gravity
+/// tilted by `angle` towards +x.
+Slope sphere_on_slope(const SphereMaterial& m, double angle, bool lock_rotation, Vec3 velocity = {},
+                      Vec3 omega = {}) {
+  const double dt = 0.05 * rayleigh_time_for(m, kRadius);
+  WallSet walls;
+  walls.add_plane(walls.add_body("slope", {}), {0, 0, 0}, {0, 0, 1}, 0);
+  const Vec3 gravity{kG * std::sin(angle), 0.0, -kG * std::cos(angle)};
+  Slope s{Simulation(one_material(m), walls, settings_for(kRadius, dt, gravity, 1.0)), dt};
+  // Equilibrium overlap of a sphere on a plane: F = 4/3 E* sqrt(R) delta^{3/2}.
+  const double E = 2.0 * m.shear_modulus * (1.0 + m.poisson);
+  const double e_star = E / (2.0 * (1.0 - m.poisson * m.poisson));
+  const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * std::pow(kRadius, 3);
+  const double delta = std::pow(3.0 * mass * kG * std::cos(angle) / (4.0 * e_star * std::sqrt(kRadius)), 2.0 / 3.0);
+  NewParticle p = sphere({0, 0, kRadius - delta}, velocity, kRadius, m.density);
+  p.angular_velocity_rad_per_s = omega;
+  s.sim.add_particle(p);
+  if (lock_rotation) s.sim.particles.inv_inertia[0] = 0.0;
+  return s;
+}
+
+/// Mean acceleration along x between t_start and t_end.
+double acceleration_x(Slope& s, double t_start, double t_end) {
+  s.sim.advance(static_cast<std::uint64_t>(t_start / s.dt));
+  const double v0 = s.sim.particles.velocity_m_per_s[0].x, time0 = s.sim.time_s();
+  s.sim.advance(static_cast<std::uint64_t>((t_end - t_start) / s.dt));
+  return (s.sim.particles.velocity_m_per_s[0].x - v0) / (s.sim.time_s() - time0);
+}
+
+// Tolerance 0.5 % of the expected acceleration.
+TEST(Incline, LockedSphereSlidesWithCoulombFriction) {
+  SphereMaterial m;
+  m.sliding_friction = 0.3;
+  const double angle = 30.0 * std::numbers::pi / 180.0;
+  Slope s = sphere_on_slope(m, angle, true);
+  const double expected = kG * (std::sin(angle) - m.sliding_friction * std::cos(angle));
+  EXPECT_NEAR(acceleration_x(s, 0.02, 0.1), expected, 0.005 * expected);
+}
+
+// Below the friction angle the locked sphere only creeps elastically: it moves less
+// than 0.1 % of its radius in 0.2 s.
+TEST(Incline, LockedSphereStaysBelowFrictionAngle) {
+  SphereMaterial m;
+  m.sliding_friction = 0.3;
+  const double angle = 10.0 * std::numbers::pi / 180.0;  // tan = 0.176 < 0.3
+  Slope s = sphere_on_slope(m, angle, true);
+  s.sim.advance(static_cast<std::uint64_t>(0.02 / s.dt));
+  const double x0 = s.sim.particles.position_m[0].x;
+  s.sim.advance(static_cast<std::uint64_t>(0.2 / s.dt));
+  EXPECT_LT(std::abs(s.sim.particles.position_m[0].x - x0), 1e-3 * kRadius);
+  EXPECT_LT(std::abs(s.sim.particles.velocity_m_per_s[0].x), 1e-5);
+}
+
+// Rolling without slip under rolling friction; tolerance 1 %, and slip speed
+// |v - omega R| below 1 % of v.
+TEST(Incline, FreeSphereRollsWithRollingResistance) {
+  SphereMaterial m;
+  m.sliding_friction = 0.8;
+  m.rolling_friction = 0.1;
+  const double angle = 20.0 * std::numbers::pi / 180.0;
+  Slope s = sphere_on_slope(m, angle, false);
+  const double expected = 5.0 / 7.0 * kG * (std::sin(angle) - m.rolling_friction * std::cos(angle));
+  EXPECT_NEAR(acceleration_x(s, 0.02, 0.1), expected, 0.01 * expected);
+  const double v = s.sim.particles.velocity_m_per_s[0].x;
+  const double rim_speed = s.sim.particles.angular_velocity_rad_per_s[0].y * kRadius;
+  EXPECT_NEAR(rim_speed, v, 0.01 * v);
+}
+
+// Rolling on a flat plane from v0 = 0.05 m/s: stopping distance v0^2 / (2 * 5/7 mu_r g)
+// within 2 %, and at rest afterwards (no chatter).
+TEST(Rolling, SphereOnFlatPlaneStopsAsPredicted) {
+  SphereMaterial m;
+  m.sliding_friction = 0.8;
+  m.rolling_friction = 0.1;
+  const double v0 = 0.05;
+  Slope s = sphere_on_slope(m, 0.0, false, {v0, 0, 0}, {0, v0 / kRadius, 0});
+  const double deceleration = 5.0 / 7.0 * m.rolling_friction * kG;
+  const double stop_time = v0 / deceleration;
+  s.sim.advance(static_cast<std::uint64_t>(1.5 * stop_time / s.dt));
+  const double expected = v0 * v0 / (2.0 * deceleration);
+  EXPECT_NEAR(s.sim.particles.position_m[0].x, expected, 0.02 * expected);
+  EXPECT_LT(std::abs(s.sim.particles.velocity_m_per_s[0].x), 1e-4 * v0);
+  EXPECT_LT(std::abs(s.sim.particles.angular_velocity_rad_per_s[0].y) * kRadius, 1e-4 * v0);
+}
+
+}  // namespace
+}  // namespace regodem::testing

@@ -150,6 +150,7 @@ struct ScenarioSpec {
   std::string name;
   std::string file;          // path of the scenario file
   std::string description;
+  std::string content_hash;  // FNV-1a 64 (hex) of the file bytes and the --set overrides
   std::uint64_t seed = 1;
   Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
   DomainSpec domain;

@@ -1,0 +1,141 @@
+// The `materials` map and the `interactions` list (contact properties per pair).
+#include <algorithm>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "scenario/scenario_fields.hpp"
+#include "scenario/scenario_sections.hpp"
+
+namespace regodem {
+namespace {
+
+bool is_physical_poisson_ratio(double value) { return value > -1.0 && value < 0.5; }
+bool is_restitution(double value) { return value > 0.0 && value <= 1.0; }
+
+/// Always returns the material, complete or not, so that references to it are not
+/// reported as undefined as well; an incomplete one has already been reported.
+MaterialSpec read_material(const std::string& name, const YamlValue& value) {
+  MaterialSpec material;
+  material.name = name;
+  material.where = value.where();
+  const auto section = value.section();
+  if (!section) return material;
+  section->allow_only({"density", "shear_modulus", "youngs_modulus", "poisson_ratio"});
+  const auto density = read_checked_quantity(*section, "density", Dimension::density,
+                                             Presence::required, is_positive,
+                                             "be greater than 0");
+  const auto poisson = read_checked_quantity(*section, "poisson_ratio", Dimension::dimensionless,
+                                             Presence::required, is_physical_poisson_ratio,
+                                             "lie between -1 and 0.5 (exclusive)");
+  // EDEM users give the shear modulus, LIGGGHTS users Young's modulus: accept either.
+  const auto modulus_key = section->exactly_one_of({"shear_modulus", "youngs_modulus"});
+  std::optional<double> modulus;
+  if (modulus_key) {
+    modulus = read_checked_quantity(*section, *modulus_key, Dimension::pressure,
+                                    Presence::required, is_positive, "be greater than 0");
+  }
+  material.density_kg_per_m3 = density.value_or(0.0);
+  material.poisson_ratio = poisson.value_or(0.0);
+  if (modulus && poisson) {
+    // G = E / (2 (1 + nu))
+    material.shear_modulus_Pa =
+        *modulus_key == "shear_modulus" ? *modulus : *modulus / (2.0 * (1.0 + *poisson));
+  }
+  return material;
+}
+
+/// The two material names of an interaction, e.g. [regolith, steel].
+std::optional<std::pair<std::string, std::string>> read_material_pair(
+    const YamlValue& value, const std::vector<std::string>& known_materials) {
+  if (!value.node().IsSequence() || value.node().size() != 2) {
+    value.error("expected a list of two material names, e.g. [regolith, steel]");
+    return std::nullopt;
+  }
+  const auto items = value.items();
+  if (!items) return std::nullopt;
+  const auto first = read_reference((*items)[0], known_materials, "material");
+  const auto second = read_reference((*items)[1], known_materials, "material");
+  if (!first || !second) return std::nullopt;
+  return std::pair{*first, *second};
+}
+
+bool same_pair(const InteractionSpec& a, const InteractionSpec& b) {
+  return (a.material_a == b.material_a && a.material_b == b.material_b) ||
+         (a.material_a == b.material_b && a.material_b == b.material_a);
+}
+
+}  // namespace
+
+void read_materials(const YamlSection& root, ScenarioSpec& spec) {
+  const auto value = root.require("materials");
+  if (!value) return;
+  const auto section = value->section();
+  if (!section) return;
+  if (section->entries().empty()) {
+    value->error("define at least one material");
+    return;
+  }
+  for (const YamlSection::Entry& entry : section->entries()) {
+    if (!is_valid_name(entry.key)) {
+      entry.value.error(fmt::format(
+          "'{}' is not a valid material name: use letters, digits, '_' and '-'", entry.key));
+      continue;
+    }
+    spec.materials.push_back(read_material(entry.key, entry.value));
+  }
+}
+
+void read_interactions(const YamlSection& root, const ScenarioReferences& references,
+                       ScenarioSpec& spec) {
+  const auto value = root.get("interactions");
+  if (!value) return;
+  const auto items = value->items();
+  if (!items) return;
+  for (const YamlValue& item : *items) {
+    const auto section = item.section();
+    if (!section) continue;
+    section->allow_only({"materials", "restitution", "sliding_friction", "rolling_friction",
+                         "clamp_attractive_normal_force"});
+    InteractionSpec interaction;
+    interaction.where = item.where();
+    const auto materials_value = section->require("materials");
+    const auto pair = materials_value
+                          ? read_material_pair(*materials_value, references.material_names)
+                          : std::nullopt;
+    const auto restitution =
+        read_checked_quantity(*section, "restitution", Dimension::dimensionless,
+                              Presence::required, is_restitution,
+                              "be greater than 0 and at most 1");
+    const auto sliding =
+        read_checked_quantity(*section, "sliding_friction", Dimension::dimensionless,
+                              Presence::required, is_non_negative, "be 0 or more");
+    const auto rolling =
+        read_checked_quantity(*section, "rolling_friction", Dimension::dimensionless,
+                              Presence::optional, is_non_negative, "be 0 or more");
+    const auto clamp = section->boolean("clamp_attractive_normal_force");
+    if (!pair || !restitution || !sliding) continue;
+    interaction.material_a = pair->first;
+    interaction.material_b = pair->second;
+    interaction.restitution = *restitution;
+    interaction.sliding_friction = *sliding;
+    interaction.rolling_friction = rolling.value_or(0.0);
+    interaction.clamp_attractive_normal_force = clamp.value_or(false);
+
+    const auto earlier = std::find_if(spec.interactions.begin(), spec.interactions.end(),
+                                      [&](const InteractionSpec& other) {
+                                        return same_pair(other, interaction);
+                                      });
+    if (earlier != spec.interactions.end()) {
+      item.error(fmt::format("the pair [{}, {}] is already given{}", interaction.material_a,
+                             interaction.material_b,
+                             earlier->where.line > 0
+                                 ? fmt::format(" at line {}", earlier->where.line)
+                                 : std::string()));
+      continue;
+    }
+    spec.interactions.push_back(std::move(interaction));
+  }
+}
+
+}  // namespace regodem

@@ -1,0 +1,162 @@
+// The `stages` list (end conditions and temporary contact overrides) and the `output`
+// section.
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "scenario/scenario_fields.hpp"
+#include "scenario/scenario_sections.hpp"
+
+namespace regodem {
+namespace {
+
+bool is_restitution(double value) { return value > 0.0 && value <= 1.0; }
+
+const std::vector<std::string> kSettledKeys{"kinetic_energy_per_particle", "min_duration",
+                                            "max_duration"};
+
+std::optional<OverrideSpec> read_override(const YamlValue& item,
+                                          const ScenarioReferences& references) {
+  const auto section = item.section();
+  if (!section) return std::nullopt;
+  section->allow_only({"materials", "restitution", "sliding_friction", "rolling_friction"});
+  OverrideSpec contact_override;
+  contact_override.where = item.where();
+  bool complete = true;
+  if (const auto materials = section->get("materials")) {
+    if (!materials->node().IsSequence() || materials->node().size() != 2) {
+      materials->error("expected a list of two material names, e.g. [regolith, steel]");
+      complete = false;
+    } else if (const auto names = materials->items()) {
+      const auto first = read_reference((*names)[0], references.material_names, "material");
+      const auto second = read_reference((*names)[1], references.material_names, "material");
+      if (first && second) {
+        contact_override.material_a = *first;
+        contact_override.material_b = *second;
+      } else {
+        complete = false;
+      }
+    }
+  }
+  const auto read_property = [&](const char* key, bool (*valid)(double), const char* rule) {
+    const auto value = read_checked_quantity(*section, key, Dimension::dimensionless,
+                                             Presence::optional, valid, rule);
+    if (section->has(key) && !value) complete = false;
+    return value;
+  };
+  contact_override.restitution =
+      read_property("restitution", is_restitution, "be greater than 0 and at most 1");
+  contact_override.sliding_friction =
+      read_property("sliding_friction", is_non_negative, "be 0 or more");
+  contact_override.rolling_friction =
+      read_property("rolling_friction", is_non_negative, "be 0 or more");
+  if (!section->has("restitution") && !section->has("sliding_friction") &&
+      !section->has("rolling_friction")) {
+    item.error("an override changes at least one of 'restitution', 'sliding_friction' or "
+               "'rolling_friction'");
+    complete = false;
+  }
+  if (!complete) return std::nullopt;
+  return contact_override;
+}
+
+void read_settled_end(const YamlSection& section, StageSpec& stage) {
+  stage.end = StageEnd::settled;
+  stage.settled_kinetic_energy_J =
+      read_checked_quantity(section, "kinetic_energy_per_particle", Dimension::energy,
+                            Presence::required, is_positive, "be greater than 0")
+          .value_or(0.0);
+  stage.min_duration_s = read_checked_quantity(section, "min_duration", Dimension::time,
+                                               Presence::optional, is_non_negative, "be 0 or more")
+                             .value_or(0.0);
+  if (const auto max_duration = read_checked_quantity(
+          section, "max_duration", Dimension::time, Presence::optional, is_positive,
+          "be greater than 0")) {
+    if (*max_duration <= stage.min_duration_s) {
+      section.get("max_duration")->error("must be greater than min_duration");
+    }
+    stage.max_duration_s = *max_duration;
+  }
+}
+
+/// Always returns the stage, complete or not, so that insertions naming it are not
+/// reported as well; an incomplete one has already been reported.
+StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references) {
+  StageSpec stage;
+  stage.where = item.where();
+  const auto section = item.section();
+  if (!section) return stage;
+  const bool settled = section->has("until");
+  std::vector<std::string> allowed{"name", "duration", "until", "overrides"};
+  std::vector<std::pair<std::string, std::string>> misplaced;
+  for (const std::string& key : kSettledKeys) {
+    if (settled) {
+      allowed.push_back(key);
+    } else {
+      misplaced.emplace_back(key, "only with 'until: settled'");
+    }
+  }
+  section->allow_only(allowed, misplaced);
+  if (const auto name = read_item_name(*section)) stage.name = *name;
+
+  const auto end_key = section->exactly_one_of({"duration", "until"});
+  if (end_key && *end_key == "duration") {
+    stage.end = StageEnd::time;
+    stage.duration_s = read_checked_quantity(*section, "duration", Dimension::time,
+                                             Presence::required, is_positive,
+                                             "be greater than 0")
+                           .value_or(0.0);
+  } else if (end_key && *end_key == "until") {
+    if (section->get("until")->choice({"settled"})) read_settled_end(*section, stage);
+  }
+
+  if (const auto overrides = section->get("overrides")) {
+    if (const auto items = overrides->items()) {
+      for (const YamlValue& override_item : *items) {
+        if (auto contact_override = read_override(override_item, references)) {
+          stage.overrides.push_back(std::move(*contact_override));
+        }
+      }
+    }
+  }
+  return stage;
+}
+
+}  // namespace
+
+void read_stages(const YamlSection& root, const ScenarioReferences& references,
+                 ScenarioSpec& spec) {
+  const auto value = root.require("stages");
+  if (!value) return;
+  const auto items = value->items();
+  if (!items) return;
+  if (items->empty()) {
+    value->error("define at least one stage, e.g. '- {name: settle, duration: 0.5 s}'");
+    return;
+  }
+  std::vector<NamedPlace> names;
+  for (const YamlValue& item : *items) {
+    StageSpec stage = read_stage(item, references);
+    names.push_back({stage.name, stage.where});
+    spec.stages.push_back(std::move(stage));
+  }
+  report_duplicate_names(names, "stage", value->context().diagnostics);
+}
+
+void read_output(const YamlSection& root, ScenarioSpec& spec) {
+  const auto value = root.get("output");
+  if (!value) return;
+  const auto section = value->section();
+  if (!section) return;
+  section->allow_only({"interval", "progress_interval"});
+  spec.output.interval_s = read_checked_quantity(*section, "interval", Dimension::time,
+                                                 Presence::optional, is_positive,
+                                                 "be greater than 0")
+                               .value_or(spec.output.interval_s);
+  spec.output.progress_interval_s =
+      read_checked_quantity(*section, "progress_interval", Dimension::time, Presence::optional,
+                            is_positive, "be greater than 0")
+          .value_or(spec.output.progress_interval_s);
+}
+
+}  // namespace regodem

@@ -1,0 +1,215 @@
+// The `walls` list: analytic planes, disks and cylinder shells, with prescribed motion.
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "scenario/scenario_fields.hpp"
+#include "scenario/scenario_sections.hpp"
+
+namespace regodem {
+namespace {
+
+const std::vector<std::string> kCommonKeys{"name", "type", "material", "motion"};
+
+std::vector<std::string> keys_for(WallShape shape) {
+  std::vector<std::string> keys = kCommonKeys;
+  switch (shape) {
+    case WallShape::plane:
+      keys.insert(keys.end(), {"point", "normal"});
+      break;
+    case WallShape::disk:
+      keys.insert(keys.end(), {"center", "normal", "radius", "diameter"});
+      break;
+    case WallShape::cylinder:
+      keys.insert(keys.end(), {"base", "axis", "radius", "diameter", "length", "contact", "ends"});
+      break;
+  }
+  return keys;
+}
+
+// The three shapes name their anchor point and direction differently (as their meaning
+// differs); say so when a key of another shape is used.
+std::vector<std::pair<std::string, std::string>> misplaced_keys(WallShape shape) {
+  switch (shape) {
+    case WallShape::plane:
+      return {{"center", "a plane takes 'point', any point on it"},
+              {"base", "a plane takes 'point', any point on it"},
+              {"axis", "a plane takes 'normal', pointing towards the particles"},
+              {"radius", "a plane is unbounded; a disk has a radius"},
+              {"diameter", "a plane is unbounded; a disk has a diameter"}};
+    case WallShape::disk:
+      return {{"point", "a disk takes 'center'"},
+              {"base", "a disk takes 'center'"},
+              {"axis", "a disk takes 'normal'"}};
+    case WallShape::cylinder:
+      return {{"point", "a cylinder takes 'base', the centre of its bottom end"},
+              {"center", "a cylinder takes 'base', the centre of its bottom end"},
+              {"normal", "a cylinder takes 'axis', from its bottom end to its top"}};
+  }
+  return {};
+}
+
+void read_motion(const YamlValue& value, WallSpec& wall) {
+  const auto section = value.section();
+  if (!section) return;
+  section->allow_only({"velocity", "angular_velocity", "axis", "axis_point", "start", "stop"});
+  MotionSpec& motion = wall.motion;
+  motion.velocity_m_per_s = section->vector("velocity", Dimension::velocity).value_or(Vec3{});
+  motion.axis_point_m = section->vector("axis_point", Dimension::length).value_or(wall.point_m);
+
+  if (const auto spin = section->get("angular_velocity")) {
+    if (spin->node().IsScalar()) {
+      // "200 rpm" turns about `axis`, by default the wall's own axis (right-handed).
+      const auto speed = spin->quantity(Dimension::angular_velocity);
+      const auto axis = read_direction(*section, "axis", Presence::optional);
+      if (speed) motion.angular_velocity_rad_per_s = axis.value_or(wall.normal) * *speed;
+    } else {
+      if (section->has("axis")) {
+        section->get("axis")->error(
+            "'axis' goes with a single angular speed (e.g. 200 rpm); the vector "
+            "angular_velocity already gives the axis");
+      }
+      motion.angular_velocity_rad_per_s =
+          spin->vector(Dimension::angular_velocity).value_or(Vec3{});
+    }
+    const Vec3& omega = motion.angular_velocity_rad_per_s;
+    // Analytic walls may only spin about their own symmetry axis (or plane normal).
+    if (norm(cross(omega, wall.normal)) > 1e-9 * norm(omega)) {
+      spin->error("an analytic wall can turn only about its own axis (its 'axis' or 'normal')");
+    }
+    // A plane turned about any line along its normal stays in place; a disk or cylinder
+    // only about its own axis.
+    const Vec3 offset = motion.axis_point_m - wall.point_m;
+    if (wall.shape != WallShape::plane &&
+        norm(cross(offset, wall.normal)) > 1e-9 * (norm(offset) + 1e-3)) {
+      (section->has("axis_point") ? *section->get("axis_point") : *spin)
+          .error("the rotation axis must pass through the wall's own axis");
+    }
+  } else if (section->has("axis")) {
+    section->get("axis")->error("'axis' is only used with 'angular_velocity'");
+  }
+
+  motion.start_s = read_checked_quantity(*section, "start", Dimension::time, Presence::optional,
+                                         is_non_negative, "be 0 or more")
+                       .value_or(0.0);
+  if (const auto stop = read_checked_quantity(*section, "stop", Dimension::time,
+                                              Presence::optional, is_positive,
+                                              "be greater than 0")) {
+    if (*stop <= motion.start_s) section->get("stop")->error("must be later than 'start'");
+    motion.stop_s = *stop;
+  }
+}
+
+void read_cylinder_ends(const YamlValue& value, WallSpec& wall) {
+  const auto section = value.section();
+  if (!section) return;
+  section->allow_only({"bottom", "top"});
+  const std::vector<std::string> options{"open", "capped"};
+  if (const auto bottom = section->get("bottom")) {
+    wall.cap_bottom = bottom->choice(options).value_or("open") == "capped";
+  }
+  if (const auto top = section->get("top")) {
+    wall.cap_top = top->choice(options).value_or("open") == "capped";
+  }
+}
+
+void read_shape(const YamlSection& section, const ScenarioReferences& references, WallSpec& wall) {
+  const char* point_key = "point";
+  const char* direction_key = "normal";
+  if (wall.shape == WallShape::disk) point_key = "center";
+  if (wall.shape == WallShape::cylinder) {
+    point_key = "base";
+    direction_key = "axis";
+  }
+  const auto point = section.required_vector(point_key, Dimension::length);
+  // A cylinder is usually upright, so its axis defaults to +z; a plane or disk must say
+  // which side the particles are on.
+  const auto direction = read_direction(
+      section, direction_key,
+      wall.shape == WallShape::cylinder ? Presence::optional : Presence::required);
+  if (point) wall.point_m = *point;
+  if (direction) wall.normal = *direction;
+
+  std::optional<Bounds> extent;
+  switch (wall.shape) {
+    case WallShape::plane:
+      if (point) extent = Bounds{*point, *point};
+      break;
+    case WallShape::disk: {
+      const auto radius = read_radius(section, "radius", "diameter", Presence::required);
+      if (radius) wall.radius_m = *radius;
+      if (point && direction && radius) extent = cylinder_bounds(*point, *direction, *radius, 0.0);
+      break;
+    }
+    case WallShape::cylinder: {
+      const auto radius = read_radius(section, "radius", "diameter", Presence::required);
+      const auto length = read_checked_quantity(section, "length", Dimension::length,
+                                                Presence::required, is_positive,
+                                                "be greater than 0");
+      if (radius) wall.radius_m = *radius;
+      if (length) wall.length_m = *length;
+      if (const auto contact = section.get("contact")) {
+        const auto side = contact->choice({"inside", "outside", "both"});
+        if (side == "outside") wall.side = CylinderSide::outside;
+        if (side == "both") wall.side = CylinderSide::both;
+      }
+      if (const auto ends = section.get("ends")) read_cylinder_ends(*ends, wall);
+      if (point && (direction || !section.has(direction_key)) && radius && length) {
+        extent = cylinder_bounds(*point, wall.normal, *radius, *length);
+      }
+      break;
+    }
+  }
+  if (extent) check_inside_domain(section.value(), *extent, references, "the wall");
+}
+
+std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReferences& references) {
+  const auto section = item.section();
+  if (!section) return std::nullopt;
+  WallSpec wall;
+  wall.where = item.where();
+  const auto type_value = section->require("type");
+  const auto type = type_value ? type_value->choice({"plane", "disk", "cylinder"}) : std::nullopt;
+  if (!type) {
+    // Without a shape, still catch keys that no wall takes.
+    std::vector<std::string> any_wall_key = keys_for(WallShape::cylinder);
+    any_wall_key.insert(any_wall_key.end(), {"point", "center", "normal"});
+    section->allow_only(any_wall_key);
+    read_item_name(*section);
+    return std::nullopt;
+  }
+  wall.shape = *type == "plane"  ? WallShape::plane
+               : *type == "disk" ? WallShape::disk
+                                 : WallShape::cylinder;
+  section->allow_only(keys_for(wall.shape), misplaced_keys(wall.shape));
+  const auto name = read_item_name(*section);
+  if (name) wall.name = *name;
+
+  if (const auto material = section->get("material")) {
+    wall.material = read_reference(*material, references.material_names, "material").value_or("");
+  }
+  read_shape(*section, references, wall);
+  if (const auto motion = section->get("motion")) read_motion(*motion, wall);
+  if (!name) return std::nullopt;
+  return wall;
+}
+
+}  // namespace
+
+void read_walls(const YamlSection& root, const ScenarioReferences& references,
+                ScenarioSpec& spec) {
+  const auto value = root.get("walls");
+  if (!value) return;
+  const auto items = value->items();
+  if (!items) return;
+  std::vector<NamedPlace> names;
+  for (const YamlValue& item : *items) {
+    if (auto wall = read_wall(item, references)) {
+      names.push_back({wall->name, wall->where});
+      spec.walls.push_back(std::move(*wall));
+    }
+  }
+  report_duplicate_names(names, "wall", value->context().diagnostics);
+}
+
+}  // namespace regodem

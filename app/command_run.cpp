@@ -1,0 +1,221 @@
+// `regodem run`: read and build the scenario, prepare the output directory, run every
+// stage with progress on stderr, write summary.json, and end with one line that says
+// how it went and where the outputs are.
+#include <unistd.h>
+
+#include <omp.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <fmt/chrono.h>
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "core/error.hpp"
+#include "human_format.hpp"
+#include "io/atomic_file.hpp"
+#include "io/output_directory.hpp"
+#include "io/summary_json_writer.hpp"
+#include "progress_display.hpp"
+#include "regodem/build_info.hpp"
+#include "run_recorder.hpp"
+#include "scenario/scenario_builder.hpp"
+#include "scenario/scenario_reader.hpp"
+#include "signal_handling.hpp"
+
+namespace regodem::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The files a run writes in its output directory; --overwrite replaces these only.
+constexpr const char* time_series_file = "time_series.csv";
+constexpr const char* summary_file = "summary.json";
+constexpr const char* scenario_copy_file = "scenario.yaml";
+constexpr const char* overrides_file = "overrides.txt";
+
+std::string utc_timestamp(std::chrono::system_clock::time_point when) {
+  return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(when)));
+}
+
+std::string scenario_name_of(const ScenarioSpec& spec, const std::string& scenario_path) {
+  return spec.name.empty() ? fs::path(scenario_path).stem().string() : spec.name;
+}
+
+/// "out/demo/": a trailing separator says "a folder" in the final message.
+std::string folder_for_message(const fs::path& directory) {
+  std::string text = directory.string();
+  if (text.empty() || text.back() != '/') text += '/';
+  return text;
+}
+
+std::string overrides_file_content(const std::vector<std::string>& overrides) {
+  std::string content;
+  for (const std::string& override_text : overrides) content += override_text + '\n';
+  return content;
+}
+
+/// The copy of the scenario and the --set values that together reproduce the run.
+void write_reproduction_files(const fs::path& directory, const RunOptions& options) {
+  copy_file_atomically(options.scenario_path, directory / scenario_copy_file);
+  write_file_atomically(directory / overrides_file, overrides_file_content(options.overrides));
+}
+
+std::string signal_name(int signal_number) {
+  if (signal_number == SIGINT) return "SIGINT";
+  if (signal_number == SIGTERM) return "SIGTERM";
+  return fmt::format("signal {}", signal_number);
+}
+
+std::string stage_phrase(const std::optional<StageInfo>& stage) {
+  if (!stage) return "before the first stage";
+  return fmt::format("in stage {}/{} '{}'", stage->index + 1, stage->count, stage->name);
+}
+
+/// How the run ended, whether the runner returned or threw.
+struct Ending {
+  RunStatus status = RunStatus::failed;
+  int exit_code = exit_status::run_failed;
+  RunOutcome outcome;
+};
+
+Ending ending_from_outcome(const RunOutcome& outcome) {
+  if (outcome.completed) return {RunStatus::completed, exit_status::success, outcome};
+  if (outcome.interrupted) return {RunStatus::interrupted, exit_status::interrupted, outcome};
+  return {RunStatus::failed, exit_status::run_failed, outcome};
+}
+
+/// A runner that threw still leaves what the last progress report knew.
+Ending ending_from_exception(const std::string& message, int exit_code, const RunRecorder& recorder,
+                             double wall_s) {
+  Ending ending;
+  ending.exit_code = exit_code;
+  ending.outcome.message = message;
+  ending.outcome.wall_s = wall_s;
+  if (const std::optional<ProgressSnapshot> snapshot = recorder.last_snapshot()) {
+    ending.outcome.particles = snapshot->particles;
+    ending.outcome.steps = snapshot->step;
+    ending.outcome.simulated_time_s = snapshot->time_s;
+  }
+  return ending;
+}
+
+RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const RunOptions& options,
+                        const PreparedRun& prepared, const RunRecorder& recorder,
+                        std::chrono::system_clock::time_point started_at) {
+  const RunOutcome& outcome = ending.outcome;
+  RunSummary summary;
+  summary.status = ending.status;
+  summary.message = outcome.message;
+  summary.particles = outcome.particles;
+  summary.steps = outcome.steps;
+  summary.simulated_time_s = outcome.simulated_time_s;
+  summary.wall_time_s = outcome.wall_s;
+  summary.particle_steps_per_s = outcome.particle_steps_per_s;
+  summary.time_step_s = prepared.time_step_s();
+  summary.threads = prepared.threads();
+  summary.version = build_info::version;
+  summary.build_type = build_info::build_type;
+  summary.compiler = build_info::compiler;
+  summary.started_at_utc = utc_timestamp(started_at);
+  summary.scenario_name = scenario_name_of(spec, options.scenario_path);
+  summary.scenario_file = options.scenario_path;
+  summary.scenario_hash = spec.content_hash;
+  summary.scenario_copy = scenario_copy_file;
+  summary.overrides = options.overrides;
+  const StageResult unfinished =
+      ending.status == RunStatus::interrupted ? StageResult::interrupted : StageResult::failed;
+  summary.stages = recorder.stage_summaries(outcome.simulated_time_s, unfinished);
+  summary.notices = recorder.notices();
+  return summary;
+}
+
+std::string final_line(const Ending& ending, const RunRecorder& recorder, const fs::path& directory) {
+  const RunOutcome& outcome = ending.outcome;
+  const std::string where = folder_for_message(directory);
+  switch (ending.status) {
+    case RunStatus::completed:
+      return fmt::format("regodem: completed {} stage{} in {} ({} particle-steps/s); outputs in {}",
+                         outcome.stages_finished, outcome.stages_finished == 1 ? "" : "s",
+                         format_wall_duration(outcome.wall_s),
+                         format_compact(outcome.particle_steps_per_s), where);
+    case RunStatus::interrupted:
+      return fmt::format(
+          "regodem: interrupted by {} {} at t = {} after {}; outputs so far in {} "
+          "(resuming is not available yet: checkpoints come in a later version)",
+          signal_name(stop_signal()), stage_phrase(recorder.current_stage()),
+          format_simulated_time(outcome.simulated_time_s), format_wall_duration(outcome.wall_s), where);
+    case RunStatus::failed:
+      break;
+  }
+  return fmt::format("regodem: failed {} at t = {} after {}; outputs so far in {}",
+                     stage_phrase(recorder.current_stage()),
+                     format_simulated_time(outcome.simulated_time_s),
+                     format_wall_duration(outcome.wall_s), where);
+}
+
+}  // namespace
+
+int run_scenario(const RunOptions& options) {
+  const auto started_at = std::chrono::system_clock::now();
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  omp_set_num_threads(threads);
+
+  std::optional<ScenarioSpec> spec;
+  std::optional<PreparedRun> prepared;
+  fs::path directory;
+  try {
+    spec = read_scenario_file(options.scenario_path, options.overrides);
+    directory = options.output_directory.empty()
+                    ? default_output_directory(scenario_name_of(*spec, options.scenario_path))
+                    : fs::path(options.output_directory);
+    // Refuse a used directory before building, which may take a while, but clear it
+    // only after, so that a scenario that cannot run leaves a previous run's outputs.
+    check_output_directory(directory, options.overwrite);
+    prepared.emplace(PreparedRun::build(*spec, threads));
+    prepare_output_directory(directory, options.overwrite,
+                             {time_series_file, summary_file, scenario_copy_file, overrides_file});
+  } catch (const InputError& error) {
+    fmt::print(stderr, "regodem: error: {}\n", error.what());
+    return exit_status::bad_input;
+  }
+  write_reproduction_files(directory, options);
+
+  ProgressDisplay display(stderr, ::isatty(::fileno(stderr)) == 1, spec->output.progress_interval_s);
+  std::vector<std::string> stage_names;
+  for (const StageSpec& stage : spec->stages) stage_names.push_back(stage.name);
+  RunRecorder recorder(directory / time_series_file, display, stage_names);
+
+  const std::atomic<bool>& stop_requested = install_stop_request_handlers();
+  const auto wall_start = std::chrono::steady_clock::now();
+  const auto wall_s = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  Ending ending;
+  try {
+    ending = ending_from_outcome(prepared->run(recorder, stop_requested));
+  } catch (const InputError& error) {
+    // Something only the run could find out (a particle file that will not read).
+    ending = ending_from_exception(error.what(), exit_status::bad_input, recorder, wall_s());
+  } catch (const std::exception& error) {
+    ending = ending_from_exception(error.what(), exit_status::run_failed, recorder, wall_s());
+  }
+  display.finish();
+
+  if (ending.status == RunStatus::failed && !ending.outcome.message.empty()) {
+    fmt::print(stderr, "regodem: {}\n", ending.outcome.message);
+  }
+  write_summary_json(directory / summary_file,
+                     make_summary(ending, *spec, options, *prepared, recorder, started_at));
+  fmt::print("{}\n", final_line(ending, recorder, directory));
+  std::fflush(stdout);
+  return ending.exit_code;
+}
+
+}  // namespace regodem::app

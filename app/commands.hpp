@@ -1,0 +1,37 @@
+#pragma once
+// The subcommands of `regodem`: main.cpp parses the command line into these options
+// and calls one function; each lives in its own command_*.cpp.
+#include <string>
+#include <vector>
+
+namespace regodem::app {
+
+/// Exit statuses, documented in `regodem --help`.
+namespace exit_status {
+inline constexpr int success = 0;
+inline constexpr int run_failed = 1;   // a stage failed (blow-up, did not settle) or an internal error
+inline constexpr int bad_input = 2;    // scenario, command line or output directory is wrong; nothing ran
+inline constexpr int interrupted = 130;  // SIGINT or SIGTERM (128 + SIGINT, as shells report Ctrl-C)
+}  // namespace exit_status
+
+struct RunOptions {
+  std::string scenario_path;
+  std::string output_directory;  // empty: out/<scenario name>
+  int threads = 0;               // 0: OpenMP's default
+  std::vector<std::string> overrides;  // key.path=value
+  bool overwrite = false;
+};
+
+struct ValidateOptions {
+  std::string scenario_path;
+  std::vector<std::string> overrides;
+};
+
+int run_scenario(const RunOptions& options);
+int validate_scenario(const ValidateOptions& options);
+int print_info();
+
+/// The version line of `regodem --version`.
+std::string version_line();
+
+}  // namespace regodem::app

@@ -1,0 +1,98 @@
+// regodem: the command line. Parses the arguments and hands over to one subcommand
+// (command_run.cpp, command_validate.cpp, command_info.cpp).
+#include <exception>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "core/error.hpp"
+
+namespace {
+
+constexpr const char* exit_status_help =
+    "Exit status: 0 every stage finished (or the command succeeded); 1 a stage failed\n"
+    "(blow-up, did not settle) or an internal error; 2 bad input (scenario, command line,\n"
+    "output directory), nothing was run; 130 interrupted by SIGINT/SIGTERM.";
+
+constexpr const char* set_help =
+    "Override a scenario value, e.g. --set stages.settle.duration=\"0.2 s\" (key path as the "
+    "file nests it, value as the file would write it); repeatable";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace regodem::app;
+
+  CLI::App app{"RegoDEM: discrete element simulation of granular media, for drilling in lunar regolith",
+               "regodem"};
+  app.set_version_flag("--version", version_line(), "Print the version and exit");
+  app.require_subcommand(1);
+  app.footer(exit_status_help);
+
+  RunOptions run_options;
+  CLI::App* run = app.add_subcommand("run", "Run every stage of a scenario and write its outputs");
+  run->add_option("SCENARIO", run_options.scenario_path, "Scenario file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  run->add_option("-o,--output", run_options.output_directory,
+                  "Output directory (default: out/<scenario name> in the working directory); "
+                  "must be new or empty unless --overwrite")
+      ->type_name("OUTDIR");
+  run->add_option("--threads", run_options.threads,
+                  "OpenMP threads (default: OMP_NUM_THREADS, else every core)")
+      ->type_name("N")
+      ->check(CLI::Range(1, 4096));
+  run->add_option("--set", run_options.overrides, set_help)
+      ->type_name("KEY.PATH=VALUE")
+      ->allow_extra_args(false);
+  run->add_flag("--overwrite", run_options.overwrite,
+                "Reuse a non-empty OUTDIR: replace the files a run writes, leave other files");
+  run->footer(
+      "Writes OUTDIR/time_series.csv (header: name [unit]), OUTDIR/summary.json, OUTDIR/scenario.yaml\n"
+      "(a copy of SCENARIO) and OUTDIR/overrides.txt (the --set values). Ctrl-C stops the run\n"
+      "cleanly and still writes the outputs; a second Ctrl-C ends it at once.");
+
+  ValidateOptions validate_options;
+  CLI::App* validate = app.add_subcommand(
+      "validate", "Read and check a scenario, print the plan it makes (time step, walls, stages); runs nothing");
+  validate->add_option("SCENARIO", validate_options.scenario_path, "Scenario file (YAML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  validate->add_option("--set", validate_options.overrides, set_help)
+      ->type_name("KEY.PATH=VALUE")
+      ->allow_extra_args(false);
+
+  CLI::App* info = app.add_subcommand(
+      "info", "Print the version, build type, compiler, OpenMP threads and library versions");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    // CLI11 reports a misspelt subcommand only as "a subcommand is required".
+    const std::vector<std::string> unparsed = app.remaining();
+    if (app.get_subcommands().empty() && !unparsed.empty() && !unparsed.front().starts_with('-')) {
+      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, validate and info (see regodem --help)\n",
+                 unparsed.front());
+      return exit_status::bad_input;
+    }
+    // CLI11 prints the message (or the help/version) and gives its own codes (1xx);
+    // every usage error is "bad input" here.
+    return app.exit(error) == 0 ? exit_status::success : exit_status::bad_input;
+  }
+
+  try {
+    if (*run) return run_scenario(run_options);
+    if (*validate) return validate_scenario(validate_options);
+    if (*info) return print_info();
+  } catch (const regodem::InputError& error) {
+    fmt::print(stderr, "regodem: error: {}\n", error.what());
+    return exit_status::bad_input;
+  } catch (const std::exception& error) {
+    fmt::print(stderr, "regodem: internal error: {}\n", error.what());
+    return exit_status::run_failed;
+  }
+  return exit_status::bad_input;  // unreachable: require_subcommand(1)
+}

@@ -1,0 +1,58 @@
+#pragma once
+// The RunObserver of `regodem run`: passes progress to the display, samples to the
+// time-series CSV, and keeps each stage's result and times for summary.json.
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/csv_time_series_writer.hpp"
+#include "io/summary_json_writer.hpp"
+#include "progress_display.hpp"
+#include "sim/run_observer.hpp"
+
+namespace regodem::app {
+
+class RunRecorder final : public RunObserver {
+ public:
+  /// `planned_stage_names`: every stage of the scenario, so that summary.json lists
+  /// those never reached too.
+  RunRecorder(std::filesystem::path time_series_path, ProgressDisplay& display,
+              const std::vector<std::string>& planned_stage_names);
+
+  void columns(const std::vector<SeriesColumn>& columns) override;
+  void stage_started(const StageInfo& stage) override;
+  void progress(const ProgressSnapshot& snapshot) override;
+  void sample(const std::vector<double>& row) override;
+  void notice(const std::string& message) override;
+  void stage_finished(const StageInfo& stage, StageResult result, const std::string& message) override;
+
+  /// Stage records. The last stage started ends at `final_time_s` (the run's simulated
+  /// time when it returned) and, if it never reported its end (the run threw), gets
+  /// `result_if_unfinished`.
+  std::vector<StageSummary> stage_summaries(double final_time_s,
+                                            StageResult result_if_unfinished) const;
+  /// The stage running or last run, if any started.
+  std::optional<StageInfo> current_stage() const { return current_stage_; }
+  /// The latest progress report, if any came.
+  std::optional<ProgressSnapshot> last_snapshot() const { return last_snapshot_; }
+  bool wrote_time_series() const { return time_series_ != nullptr; }
+  const std::vector<std::string>& notices() const { return notices_; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  std::filesystem::path time_series_path_;
+  ProgressDisplay& display_;
+  std::unique_ptr<CsvTimeSeriesWriter> time_series_;
+  std::vector<StageSummary> stages_;
+  std::optional<StageInfo> current_stage_;
+  std::optional<ProgressSnapshot> last_snapshot_;
+  std::vector<std::string> notices_;
+  std::optional<std::size_t> last_started_index_;
+  Clock::time_point stage_wall_start_;
+};
+
+}  // namespace regodem::app

@@ -1,0 +1,78 @@
+#include "io/summary_json_writer.hpp"
+
+#include <cmath>
+
+#include "io/atomic_file.hpp"
+
+namespace regodem {
+namespace {
+
+/// JSON has no NaN or infinity; nlohmann would write null for them anyway, but saying
+/// so here keeps that decision visible.
+nlohmann::ordered_json number_or_null(std::optional<double> value) {
+  if (!value || !std::isfinite(*value)) return nullptr;
+  return *value;
+}
+
+nlohmann::ordered_json stage_to_json(const StageSummary& stage) {
+  nlohmann::ordered_json json;
+  json["name"] = stage.name;
+  json["result"] = stage.result ? std::string(to_string(*stage.result)) : std::string("not started");
+  json["start_time_s"] = number_or_null(stage.start_time_s);
+  json["end_time_s"] = number_or_null(stage.end_time_s);
+  json["wall_time_s"] = number_or_null(stage.wall_time_s);
+  json["message"] = stage.message;
+  return json;
+}
+
+}  // namespace
+
+std::string_view to_string(RunStatus status) {
+  switch (status) {
+    case RunStatus::completed: return "completed";
+    case RunStatus::failed: return "failed";
+    case RunStatus::interrupted: return "interrupted";
+  }
+  return "failed";
+}
+
+std::string_view to_string(StageResult result) {
+  switch (result) {
+    case StageResult::finished: return "finished";
+    case StageResult::failed: return "failed";
+    case StageResult::interrupted: return "interrupted";
+  }
+  return "failed";
+}
+
+nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
+  nlohmann::ordered_json json;
+  json["outcome"] = std::string(to_string(summary.status));
+  json["message"] = summary.message;
+  json["particles"] = summary.particles;
+  json["steps"] = summary.steps;
+  json["simulated_time_s"] = number_or_null(summary.simulated_time_s);
+  json["wall_time_s"] = number_or_null(summary.wall_time_s);
+  json["particle_steps_per_s"] = number_or_null(summary.particle_steps_per_s);
+  json["time_step_s"] = number_or_null(summary.time_step_s);
+  json["threads"] = summary.threads;
+  json["version"] = summary.version;
+  json["build_type"] = summary.build_type;
+  json["compiler"] = summary.compiler;
+  json["started_at_utc"] = summary.started_at_utc;
+  json["scenario"] = {{"name", summary.scenario_name},
+                      {"file", summary.scenario_file},
+                      {"hash", summary.scenario_hash},
+                      {"copy", summary.scenario_copy},
+                      {"overrides", summary.overrides}};
+  json["stages"] = nlohmann::ordered_json::array();
+  for (const StageSummary& stage : summary.stages) json["stages"].push_back(stage_to_json(stage));
+  json["notices"] = summary.notices;
+  return json;
+}
+
+void write_summary_json(const std::filesystem::path& path, const RunSummary& summary) {
+  write_file_atomically(path, summary_to_json(summary).dump(2) + "\n");
+}
+
+}  // namespace regodem

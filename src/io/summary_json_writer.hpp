@@ -1,0 +1,64 @@
+#pragma once
+// summary.json: what a run did, how fast, with what build and scenario, so that runs
+// can be compared and reproduced. Written whole (atomic_file) at the end of a run.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/run_observer.hpp"
+
+namespace regodem {
+
+enum class RunStatus { completed, failed, interrupted };
+
+/// "completed", "failed", "interrupted".
+std::string_view to_string(RunStatus status);
+/// "finished", "failed", "interrupted".
+std::string_view to_string(StageResult result);
+
+struct StageSummary {
+  std::string name;
+  std::optional<StageResult> result;  // empty: the stage never started ("not started")
+  std::optional<double> start_time_s;
+  std::optional<double> end_time_s;
+  std::optional<double> wall_time_s;
+  std::string message;  // why it failed or was interrupted
+};
+
+struct RunSummary {
+  RunStatus status = RunStatus::failed;
+  std::string message;
+  std::size_t particles = 0;
+  std::uint64_t steps = 0;
+  double simulated_time_s = 0.0;
+  double wall_time_s = 0.0;
+  double particle_steps_per_s = 0.0;
+  double time_step_s = 0.0;
+  int threads = 1;
+  std::string version;
+  std::string build_type;
+  std::string compiler;
+  std::string started_at_utc;  // ISO 8601
+  std::string scenario_name;
+  std::string scenario_file;        // as given on the command line
+  std::string scenario_hash;
+  std::string scenario_copy;        // file name of the copy in the output directory
+  std::vector<std::string> overrides;  // --set key.path=value, in the order applied
+  std::vector<StageSummary> stages;
+  std::vector<std::string> notices;  // what the run told the user (a full insertion region...)
+};
+
+/// The summary as JSON, keys in a fixed, readable order. Times absent (a stage never
+/// reached) and non-finite numbers become null.
+nlohmann::ordered_json summary_to_json(const RunSummary& summary);
+
+/// Writes summary_to_json, indented, to `path` atomically.
+void write_summary_json(const std::filesystem::path& path, const RunSummary& summary);
+
+}  // namespace regodem

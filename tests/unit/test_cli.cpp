@@ -1,0 +1,398 @@
+// The regodem command line, run as a user runs it: exit statuses, messages, and the
+// files a run leaves in its output directory.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "regodem/build_info.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+std::string shell_quoted(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+/// Runs regodem with `arguments` in `working_directory`; stdin is /dev/null.
+CommandResult run_regodem(const std::vector<std::string>& arguments,
+                          const fs::path& working_directory = fs::current_path()) {
+  std::string command = "cd " + shell_quoted(working_directory.string()) + " && " +
+                        shell_quoted(REGODEM_BINARY);
+  for (const std::string& argument : arguments) command += " " + shell_quoted(argument);
+  command += " </dev/null 2>&1";
+  CommandResult result;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) result.output.append(buffer, n);
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return result;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream input(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(input), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::string> read_lines(const fs::path& path) {
+  std::ifstream input(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(input, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  for (const char c : line) {
+    if (c == ',') {
+      fields.push_back(field);
+      field.clear();
+    } else {
+      field += c;
+    }
+  }
+  fields.push_back(field);
+  return fields;
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream input(path);
+  return nlohmann::json::parse(input);
+}
+
+/// Eight 1 mm spheres dropped into a cup for `duration`: a run of about a thousand
+/// steps, fast even in a sanitizer build (the soft modulus keeps the step large). The
+/// cup keeps them in the domain however long the stage.
+std::string tiny_scenario(const std::string& duration = "0.02 s") {
+  return "name: tiny\n"
+         "seed: 3\n"
+         "gravity: [0, 0, -9.81]\n"
+         "domain: {min: [-5 mm, -5 mm, -1 mm], max: [5 mm, 5 mm, 10 mm]}\n"
+         "materials:\n"
+         "  glass: {density: 2500 kg/m^3, shear_modulus: 1e6 Pa, poisson_ratio: 0.25}\n"
+         "interactions:\n"
+         "  - {materials: [glass, glass], restitution: 0.5, sliding_friction: 0.5}\n"
+         "walls:\n"
+         "  - {name: cup, type: cylinder, base: [0, 0, 0], axis: [0, 0, 1], radius: 4 mm,\n"
+         "     length: 9 mm, contact: inside, ends: {bottom: capped, top: open}}\n"
+         "insertions:\n"
+         "  - name: drop\n"
+         "    material: glass\n"
+         "    region: {type: cylinder, base: [0, 0, 1 mm], axis: [0, 0, 1], radius: 2.5 mm, length: 5 mm}\n"
+         "    diameter: 1 mm\n"
+         "    count: 8\n"
+         "stages:\n"
+         "  - name: drop\n"
+         "    duration: " + duration + "\n"
+         "output: {interval: 0.005 s}\n";
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "regodem-cli-XXXXXX").string();
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+    directory_ = pattern;
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+
+  fs::path write_scenario(const std::string& name, const std::string& yaml) const {
+    const fs::path path = directory_ / name;
+    std::ofstream(path) << yaml;
+    return path;
+  }
+
+  fs::path directory_;
+};
+
+TEST_F(CliTest, InfoShowsVersionBuildCompilerAndThreads) {
+  const CommandResult result = run_regodem({"info"});
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, std::string("regodem ") + regodem::build_info::version)) << result.output;
+  EXPECT_TRUE(contains(result.output, regodem::build_info::build_type)) << result.output;
+  EXPECT_TRUE(contains(result.output, "compiler")) << result.output;
+  EXPECT_TRUE(contains(result.output, "OpenMP")) << result.output;
+}
+
+TEST_F(CliTest, VersionFlagPrintsTheVersion) {
+  const CommandResult result = run_regodem({"--version"});
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(result.output, std::string("regodem ") + regodem::build_info::version + "\n");
+}
+
+TEST_F(CliTest, HelpNamesEverySubcommand) {
+  const CommandResult result = run_regodem({"--help"});
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  for (const char* subcommand : {"run", "validate", "info"}) {
+    EXPECT_TRUE(contains(result.output, subcommand)) << subcommand << " missing from:\n" << result.output;
+  }
+}
+
+TEST_F(CliTest, UsageErrorsExitWithStatusTwo) {
+  const CommandResult no_subcommand = run_regodem({});
+  EXPECT_EQ(no_subcommand.exit_code, 2) << no_subcommand.output;
+  EXPECT_TRUE(contains(no_subcommand.output, "subcommand")) << no_subcommand.output;
+
+  const CommandResult unknown_subcommand = run_regodem({"frobnicate"});
+  EXPECT_EQ(unknown_subcommand.exit_code, 2) << unknown_subcommand.output;
+  EXPECT_TRUE(contains(unknown_subcommand.output, "frobnicate")) << unknown_subcommand.output;
+
+  const CommandResult unknown_option = run_regodem({"info", "--frobnicate"});
+  EXPECT_EQ(unknown_option.exit_code, 2) << unknown_option.output;
+  EXPECT_TRUE(contains(unknown_option.output, "--frobnicate")) << unknown_option.output;
+
+  const CommandResult missing_scenario_argument = run_regodem({"run"});
+  EXPECT_EQ(missing_scenario_argument.exit_code, 2) << missing_scenario_argument.output;
+  EXPECT_TRUE(contains(missing_scenario_argument.output, "SCENARIO")) << missing_scenario_argument.output;
+}
+
+TEST_F(CliTest, ThreadCountMustBePositive) {
+  const fs::path scenario = write_scenario("any.yaml", "name: any\n");
+  const CommandResult result = run_regodem({"run", scenario.string(), "--threads", "0"});
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_TRUE(contains(result.output, "--threads")) << result.output;
+}
+
+TEST_F(CliTest, MissingScenarioFileIsNamedAndExitsTwo) {
+  const std::string missing = (directory_ / "no-such-scenario.yaml").string();
+  for (const char* subcommand : {"validate", "run"}) {
+    const CommandResult result = run_regodem({subcommand, missing}, directory_);
+    EXPECT_EQ(result.exit_code, 2) << subcommand << ": " << result.output;
+    EXPECT_TRUE(contains(result.output, "no-such-scenario.yaml")) << subcommand << ": " << result.output;
+  }
+  EXPECT_FALSE(fs::exists(directory_ / "out"));  // nothing was run or written
+}
+
+TEST_F(CliTest, ValidatePrintsThePlanAndRunsNothing) {
+  const fs::path scenario = write_scenario("tiny.yaml", tiny_scenario());
+  const CommandResult result = run_regodem({"validate", scenario.string()}, directory_);
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, "time step")) << result.output;  // from PreparedRun::describe()
+  EXPECT_TRUE(contains(result.output, "stage 'drop'")) << result.output;
+  EXPECT_TRUE(contains(result.output, "scenario OK")) << result.output;
+  EXPECT_FALSE(fs::exists(directory_ / "out"));
+}
+
+TEST_F(CliTest, DemoScenarioValidates) {
+  const CommandResult result =
+      run_regodem({"validate", std::string(REGODEM_SOURCE_DIR) + "/scenarios/demo.yaml"}, directory_);
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, "scenario OK")) << result.output;
+}
+
+TEST_F(CliTest, RunWritesSummaryTimeSeriesAndReproductionFiles) {
+  const fs::path scenario = write_scenario("tiny.yaml", tiny_scenario());
+  const fs::path output = directory_ / "result";
+  const CommandResult result =
+      run_regodem({"run", scenario.string(), "-o", output.string(), "--threads", "1"}, directory_);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(contains(result.output, "stage 1/1 'drop' started")) << result.output;
+  EXPECT_TRUE(contains(result.output, "regodem: completed 1 stage in ")) << result.output;
+  EXPECT_TRUE(contains(result.output, "outputs in " + output.string() + "/")) << result.output;
+
+  const nlohmann::json summary = read_json(output / "summary.json");
+  EXPECT_EQ(summary.at("outcome"), "completed");
+  EXPECT_EQ(summary.at("particles").get<int>(), 8);
+  const double time_step_s = summary.at("time_step_s").get<double>();
+  EXPECT_GT(time_step_s, 0.0);
+  // The stage ends on the step nearest to 0.02 s.
+  EXPECT_NEAR(summary.at("simulated_time_s").get<double>(), 0.02, time_step_s);
+  EXPECT_NEAR(summary.at("steps").get<double>(), 0.02 / time_step_s, 1.0);
+  EXPECT_GT(summary.at("wall_time_s").get<double>(), 0.0);
+  EXPECT_GT(summary.at("particle_steps_per_s").get<double>(), 0.0);
+  EXPECT_EQ(summary.at("threads").get<int>(), 1);
+  EXPECT_EQ(summary.at("version"), regodem::build_info::version);
+  EXPECT_EQ(summary.at("build_type"), regodem::build_info::build_type);
+  EXPECT_EQ(summary.at("scenario").at("name"), "tiny");
+  EXPECT_EQ(summary.at("scenario").at("file"), scenario.string());
+  EXPECT_EQ(summary.at("scenario").at("hash").get<std::string>().size(), 16u);
+  EXPECT_TRUE(summary.at("scenario").at("overrides").empty());
+  ASSERT_EQ(summary.at("stages").size(), 1u);
+  EXPECT_EQ(summary.at("stages")[0].at("name"), "drop");
+  EXPECT_EQ(summary.at("stages")[0].at("result"), "finished");
+  EXPECT_EQ(summary.at("stages")[0].at("start_time_s").get<double>(), 0.0);
+  EXPECT_EQ(summary.at("stages")[0].at("end_time_s"), summary.at("simulated_time_s"));
+
+  const std::vector<std::string> lines = read_lines(output / "time_series.csv");
+  ASSERT_GE(lines.size(), 3u);  // header and samples at 0.005 s intervals
+  const std::vector<std::string> header = split_csv_line(lines[0]);
+  EXPECT_EQ(header[0], "time [s]");
+  for (const std::string& column : header) {
+    EXPECT_TRUE(column.size() > 3 && column.back() == ']' && contains(column, " [")) << column;
+  }
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    EXPECT_EQ(split_csv_line(lines[i]).size(), header.size()) << lines[i];
+  }
+  EXPECT_EQ(std::stod(split_csv_line(lines.back())[0]), summary.at("simulated_time_s").get<double>());
+
+  EXPECT_EQ(read_file(output / "scenario.yaml"), read_file(scenario));
+  EXPECT_EQ(read_file(output / "overrides.txt"), "");
+}
+
+TEST_F(CliTest, DefaultOutputDirectoryIsOutSlashScenarioName) {
+  write_scenario("tiny.yaml", tiny_scenario());
+  const CommandResult result = run_regodem({"run", "tiny.yaml", "--threads", "1"}, directory_);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_TRUE(fs::exists(directory_ / "out" / "tiny" / "summary.json"));
+  EXPECT_TRUE(contains(result.output, "outputs in out/tiny/")) << result.output;
+}
+
+TEST_F(CliTest, NonEmptyOutputDirectoryIsRefusedUnlessOverwrite) {
+  const fs::path scenario = write_scenario("tiny.yaml", tiny_scenario());
+  const fs::path output = directory_ / "result";
+  ASSERT_EQ(run_regodem({"run", scenario.string(), "-o", output.string()}).exit_code, 0);
+  const std::string first_summary = read_file(output / "summary.json");
+  std::ofstream(output / "notes.txt") << "mine\n";
+
+  const CommandResult refused = run_regodem({"run", scenario.string(), "-o", output.string()});
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, output.string())) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "not empty")) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "--overwrite")) << refused.output;
+  EXPECT_EQ(read_file(output / "summary.json"), first_summary);  // untouched
+
+  const CommandResult overwritten =
+      run_regodem({"run", scenario.string(), "-o", output.string(), "--overwrite"});
+  EXPECT_EQ(overwritten.exit_code, 0) << overwritten.output;
+  EXPECT_EQ(read_json(output / "summary.json").at("outcome"), "completed");
+  EXPECT_EQ(read_file(output / "notes.txt"), "mine\n");  // not a run's file: left alone
+}
+
+TEST_F(CliTest, SetOverridesAreAppliedAndRecorded) {
+  const fs::path scenario = write_scenario("tiny.yaml", tiny_scenario());
+  const CommandResult plain = run_regodem({"run", scenario.string(), "-o", (directory_ / "plain").string()});
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  const CommandResult shorter = run_regodem({"run", scenario.string(), "-o", (directory_ / "shorter").string(),
+                                             "--set", "stages.drop.duration=0.01 s"});
+  ASSERT_EQ(shorter.exit_code, 0) << shorter.output;
+
+  const nlohmann::json summary = read_json(directory_ / "shorter" / "summary.json");
+  EXPECT_NEAR(summary.at("simulated_time_s").get<double>(), 0.01, summary.at("time_step_s").get<double>());
+  EXPECT_EQ(summary.at("scenario").at("overrides"), nlohmann::json::array({"stages.drop.duration=0.01 s"}));
+  EXPECT_NE(summary.at("scenario").at("hash"),
+            read_json(directory_ / "plain" / "summary.json").at("scenario").at("hash"));
+  EXPECT_EQ(read_file(directory_ / "shorter" / "overrides.txt"), "stages.drop.duration=0.01 s\n");
+}
+
+TEST_F(CliTest, BadScenarioNamesFileAndKeyAndRunsNothing) {
+  std::string yaml = tiny_scenario();
+  yaml.replace(yaml.find("materials:\n"), 10, "materails:");
+  const fs::path scenario = write_scenario("bad.yaml", yaml);
+  for (const char* subcommand : {"validate", "run"}) {
+    const CommandResult result = run_regodem({subcommand, "bad.yaml"}, directory_);
+    EXPECT_EQ(result.exit_code, 2) << subcommand << ": " << result.output;
+    EXPECT_TRUE(contains(result.output, "bad.yaml:")) << subcommand << ": " << result.output;
+    EXPECT_TRUE(contains(result.output, "materails")) << subcommand << ": " << result.output;
+  }
+  EXPECT_FALSE(fs::exists(directory_ / "out"));
+}
+
+TEST_F(CliTest, StageThatFailsExitsOneAndSaysWhy) {
+  // Spheres released at rest are falling after 1 ms and cannot come to rest by 2 ms.
+  std::string yaml = tiny_scenario();
+  yaml.replace(yaml.find("    duration: 0.02 s"), 20,
+               "    until: settled\n"
+               "    kinetic_energy_per_particle: 1e-30 J\n"
+               "    min_duration: 0.001 s\n"
+               "    max_duration: 0.002 s");
+  const fs::path scenario = write_scenario("unsettled.yaml", yaml);
+  const fs::path output = directory_ / "result";
+  const CommandResult result = run_regodem({"run", scenario.string(), "-o", output.string()});
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_TRUE(contains(result.output, "did not settle")) << result.output;
+  EXPECT_TRUE(contains(result.output, "regodem: failed in stage 1/1 'drop'")) << result.output;
+  const nlohmann::json summary = read_json(output / "summary.json");
+  EXPECT_EQ(summary.at("outcome"), "failed");
+  EXPECT_TRUE(contains(summary.at("message").get<std::string>(), "did not settle"));
+  EXPECT_EQ(summary.at("stages")[0].at("result"), "failed");
+}
+
+/// Starts regodem with output to `log`, sends `signal_number` once the first stage has
+/// started, and returns the exit status (-1 if it did not end within a minute).
+int interrupt_run(const std::vector<std::string>& arguments, const fs::path& log, int signal_number) {
+  std::vector<std::string> argv_strings{REGODEM_BINARY};
+  argv_strings.insert(argv_strings.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& argument : argv_strings) argv.push_back(argument.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = 0;
+  const int spawn_error = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn_error != 0) return -1;
+
+  // Signal only once the handlers are surely installed: they are before a stage starts.
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (!contains(read_file(log), "started") && Clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ::kill(pid, signal_number);
+  int status = 0;
+  while (::waitpid(pid, &status, WNOHANG) == 0) {
+    if (Clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      return -1;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+TEST_F(CliTest, InterruptStopsCleanlyWritesSummaryAndExits130) {
+  // Long enough in simulated time that the signal always comes first.
+  const fs::path scenario = write_scenario("long.yaml", tiny_scenario("1000 s"));
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    const fs::path output = directory_ / ("result-" + std::to_string(signal_number));
+    const fs::path log = directory_ / ("log-" + std::to_string(signal_number));
+    const int exit_code = interrupt_run({"run", scenario.string(), "-o", output.string()}, log, signal_number);
+    const std::string printed = read_file(log);
+    EXPECT_EQ(exit_code, 130) << printed;
+    EXPECT_TRUE(contains(printed, "regodem: interrupted by SIG")) << printed;
+    EXPECT_TRUE(contains(printed, "resuming is not available yet")) << printed;
+    ASSERT_TRUE(fs::exists(output / "summary.json")) << printed;
+    const nlohmann::json summary = read_json(output / "summary.json");
+    EXPECT_EQ(summary.at("outcome"), "interrupted");
+    EXPECT_EQ(summary.at("stages")[0].at("result"), "interrupted");
+    EXPECT_LT(summary.at("simulated_time_s").get<double>(), 1000.0);
+  }
+}
+
+}  // namespace

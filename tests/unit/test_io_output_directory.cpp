@@ -1,0 +1,97 @@
+// The output directory rule: new or empty directories are used, a non-empty one is
+// refused unless --overwrite, and --overwrite removes only what a run writes.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "io/output_directory.hpp"
+
+namespace regodem {
+namespace {
+
+namespace fs = std::filesystem;
+
+class OutputDirectoryTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "regodem-outdir-XXXXXX").string();
+    ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+    root_ = pattern;
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  static void touch(const fs::path& path) { std::ofstream(path) << "x"; }
+
+  fs::path root_;
+  const std::vector<std::string> run_outputs_{"summary.json", "time_series.csv", "frames"};
+};
+
+TEST_F(OutputDirectoryTest, MissingDirectoryIsCreatedWithItsParents) {
+  const fs::path directory = root_ / "out" / "demo";
+  check_output_directory(directory, false);
+  EXPECT_FALSE(fs::exists(directory));  // checking changes nothing
+  prepare_output_directory(directory, false, run_outputs_);
+  EXPECT_TRUE(fs::is_directory(directory));
+}
+
+TEST_F(OutputDirectoryTest, EmptyDirectoryIsUsed) {
+  fs::create_directory(root_ / "empty");
+  EXPECT_NO_THROW(prepare_output_directory(root_ / "empty", false, run_outputs_));
+}
+
+TEST_F(OutputDirectoryTest, NonEmptyDirectoryIsRefusedWithoutOverwrite) {
+  fs::create_directory(root_ / "used");
+  touch(root_ / "used" / "summary.json");
+  for (const bool prepare : {false, true}) {
+    try {
+      if (prepare) {
+        prepare_output_directory(root_ / "used", false, run_outputs_);
+      } else {
+        check_output_directory(root_ / "used", false);
+      }
+      FAIL() << "expected InputError";
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find((root_ / "used").string()), std::string::npos) << message;
+      EXPECT_NE(message.find("--overwrite"), std::string::npos) << message;
+    }
+  }
+  EXPECT_TRUE(fs::exists(root_ / "used" / "summary.json"));
+}
+
+TEST_F(OutputDirectoryTest, OverwriteRemovesOnlyWhatARunWrites) {
+  const fs::path directory = root_ / "used";
+  fs::create_directories(directory / "frames");
+  touch(directory / "frames" / "0001.vtp");
+  touch(directory / "summary.json");
+  touch(directory / "time_series.csv");
+  touch(directory / "my_notes.txt");
+  check_output_directory(directory, true);
+  EXPECT_TRUE(fs::exists(directory / "summary.json"));  // checking changes nothing
+  prepare_output_directory(directory, true, run_outputs_);
+  EXPECT_FALSE(fs::exists(directory / "summary.json"));
+  EXPECT_FALSE(fs::exists(directory / "time_series.csv"));
+  EXPECT_FALSE(fs::exists(directory / "frames"));
+  EXPECT_TRUE(fs::exists(directory / "my_notes.txt"));
+}
+
+TEST_F(OutputDirectoryTest, FileInTheWayIsRefused) {
+  touch(root_ / "a_file");
+  EXPECT_THROW(prepare_output_directory(root_ / "a_file", true, run_outputs_), InputError);
+  EXPECT_THROW(prepare_output_directory(root_ / "a_file" / "below", false, run_outputs_), InputError);
+}
+
+TEST_F(OutputDirectoryTest, DefaultDirectoryIsOutSlashAPathSafeScenarioName) {
+  EXPECT_EQ(default_output_directory("demo"), fs::path("out/demo"));
+  EXPECT_EQ(default_output_directory("matching-cell_W0.v2"), fs::path("out/matching-cell_W0.v2"));
+  EXPECT_EQ(default_output_directory("my run/../x"), fs::path("out/my_run_.._x"));
+  EXPECT_EQ(default_output_directory(".."), fs::path("out/scenario.."));
+  EXPECT_EQ(default_output_directory(""), fs::path("out/scenario"));
+}
+
+}  // namespace
+}  // namespace regodem

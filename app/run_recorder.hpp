@@ -38,7 +38,6 @@ class RunRecorder final : public RunObserver {
   std::optional<StageInfo> current_stage() const { return current_stage_; }
   /// The latest progress report, if any came.
   std::optional<ProgressSnapshot> last_snapshot() const { return last_snapshot_; }
-  bool wrote_time_series() const { return time_series_ != nullptr; }
   const std::vector<std::string>& notices() const { return notices_; }
 
  private:

@@ -109,7 +109,7 @@ TEST(Pour, FineCoarseMixtureSettlesWithoutEscapesOrDeepOverlaps) {
   std::atomic<bool> stop{false};
   const RunOutcome outcome = run.run(quiet, stop);
   ASSERT_TRUE(outcome.completed) << outcome.message;
-  std::printf("steps %lu t %g wall %g pss %g\n", (unsigned long)outcome.steps, outcome.simulated_time_s, outcome.wall_s, outcome.particle_steps_per_s);  // an escape would have failed the stage
+  // An escape would have failed the stage.
   EXPECT_EQ(run.simulation().particles.size(), 960u);
   EXPECT_LT(run.simulation().max_overlap_fraction(), 0.01);
 }

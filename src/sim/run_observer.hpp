@@ -4,6 +4,7 @@
 // never prints or writes files itself.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,8 @@ struct StageInfo {
   /// "settled" stage this is its max_duration limit (may be infinite).
   double planned_end_time_s = 0.0;
   bool ends_when_settled = false;
+  /// Simulated time at which the stage ended; set in stage_finished(), NaN before.
+  double end_time_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct ProgressSnapshot {

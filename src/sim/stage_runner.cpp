@@ -151,10 +151,13 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     std::string failure;
     StageResult result = StageResult::finished;
 
+    std::uint64_t last_sampled_step = ~std::uint64_t{0};
     auto sample = [&] {
       observer.sample(time_series_row(sim, s));
-      next_sample_s += sample_interval;
+      last_sampled_step = sim.step_count();
+      while (next_sample_s <= sim.time_s() + 0.5 * dt) next_sample_s += sample_interval;
     };
+    const auto stage_clock = Clock::now();
 
     try {
       for (;;) {
@@ -193,6 +196,9 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           const double since = seconds_since(last_progress_clock);
           if (since >= kProgressEveryWallSeconds) {
             steps_per_s = static_cast<double>(sim.step_count() - last_progress_step) / since;
+            // The time left uses the stage's average rate, which does not jump about.
+            const double stage_wall = seconds_since(stage_clock);
+            const double stage_rate = stage_wall > 0.0 ? static_cast<double>(done) / stage_wall : 0.0;
             last_progress_clock = Clock::now();
             last_progress_step = sim.step_count();
             ProgressSnapshot snap;
@@ -204,9 +210,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             snap.steps_per_s = steps_per_s;
             snap.particle_steps_per_s = steps_per_s * static_cast<double>(sim.particles.size());
             snap.estimated_remaining_s =
-                stage.until_settled || steps_per_s <= 0.0
-                    ? -1.0
-                    : static_cast<double>(planned_steps - done) / steps_per_s;
+                stage.until_settled || stage_rate <= 0.0 ? -1.0 : static_cast<double>(planned_steps - done) / stage_rate;
             snap.kinetic_energy_per_particle_J = kinetic_energy_per_particle(sim);
             observer.progress(snap);
           }
@@ -219,7 +223,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       failure = fmt::format("stage '{}' failed: {}", stage.name, e.what());
     }
     if (result == StageResult::finished) {
-      sample();
+      if (last_sampled_step != sim.step_count()) sample();
       for (Insertion* ins : active)
         if (ins->inserted < ins->target_count && ins->from_file.empty())
           observer.notice(fmt::format("insertion '{}' placed {} of {} particles during stage '{}'", ins->name,
@@ -227,6 +231,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     }
     sim.materials = original_pairs;
     sim.refresh_contact_parameters();
+    info.end_time_s = sim.time_s();
     observer.stage_finished(info, result, failure);
     if (result != StageResult::finished) {
       outcome.interrupted = result == StageResult::interrupted;

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Installs what RegoDEM needs to build, test and benchmark on Debian 12, from Debian's
+# own packages only. Run as root (or with sudo available).
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends \
+  g++ cmake ninja-build pkg-config \
+  libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev libeigen3-dev nlohmann-json3-dev \
+  libgtest-dev libgmock-dev libbenchmark-dev

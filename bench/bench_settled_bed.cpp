@@ -164,6 +164,7 @@ void BM_SettledBed(benchmark::State& state) {
   state.counters["contacts_per_particle"] =
       2.0 * static_cast<double>(sim.contact_statistics().particle_contacts) / n;
   state.counters["bytes_per_particle"] = (rss_after - rss_before) / n;
+  state.counters["list_entries_per_particle"] = static_cast<double>(sim.neighbor_list().pair_count()) / n;
   state.counters["rebuilds"] = static_cast<double>(sim.neighbor_list().rebuild_count());
 }
 BENCHMARK(BM_SettledBed)

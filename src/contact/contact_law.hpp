@@ -16,7 +16,7 @@ namespace regodem {
 template <class Normal, class Damping, class Tangential, class Rolling>
 struct ContactLaw {
   /// Forces of one contact in overlap; updates the tangential history.
-  static ContactForces evaluate(const ContactPairParameters& p, const ContactGeometry& c,
+  [[gnu::always_inline]] static ContactForces evaluate(const ContactPairParameters& p, const ContactGeometry& c,
                                 Vec3& tangential_history_m) {
     const auto normal = Normal::evaluate(p.effective_youngs_modulus_Pa, c.effective_radius_m, c.overlap_m);
     const double approach_speed = dot(c.relative_velocity_m_per_s, c.normal);  // > 0 while closing

@@ -72,14 +72,23 @@ double Simulation::first_half_kick_and_drift() {
   const std::vector<Vec3>& at_build = neighbors_.positions_at_build_m();
   int escaped = 0;
   double max_move2 = 0.0;
+  Vec3* __restrict x = particles.position_m.data();
+  Vec3* __restrict v = particles.velocity_m_per_s.data();
+  Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
+  const Vec3* __restrict f = particles.force_N.data();
+  const Vec3* __restrict tau = particles.torque_N_m.data();
+  const double* __restrict inv_mass = particles.inv_mass_per_kg.data();
+  const double* __restrict inv_inertia = particles.inv_inertia.data();
+  const Vec3* __restrict x_build = at_build.data();
+  const Domain domain = settings_.domain;
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) \
     reduction(max : escaped, max_move2)
   for (std::size_t i = 0; i < n; ++i) {
-    particles.velocity_m_per_s[i] += particles.force_N[i] * (half_dt * particles.inv_mass_per_kg[i]);
-    particles.angular_velocity_rad_per_s[i] += particles.torque_N_m[i] * (half_dt * particles.inv_inertia[i]);
-    particles.position_m[i] += particles.velocity_m_per_s[i] * dt;
-    if (!settings_.domain.contains(particles.position_m[i])) escaped = 1;  // also false for NaN
-    max_move2 = std::max(max_move2, norm2(particles.position_m[i] - at_build[i]));
+    v[i] += f[i] * (half_dt * inv_mass[i]);
+    w[i] += tau[i] * (half_dt * inv_inertia[i]);
+    x[i] += v[i] * dt;
+    if (!domain.contains(x[i])) escaped = 1;  // also false for NaN
+    max_move2 = std::max(max_move2, norm2(x[i] - x_build[i]));
   }
   if (escaped) report_blow_up("left the domain");
   return std::sqrt(max_move2);
@@ -89,14 +98,20 @@ void Simulation::second_half_kick() {
   const double dt = settings_.time_step_s, half_dt = 0.5 * dt;
   const std::size_t n = particles.size();
   int too_fast = 0;
+  Vec3* __restrict v = particles.velocity_m_per_s.data();
+  Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
+  const Vec3* __restrict f = particles.force_N.data();
+  const Vec3* __restrict tau = particles.torque_N_m.data();
+  const double* __restrict inv_mass = particles.inv_mass_per_kg.data();
+  const double* __restrict inv_inertia = particles.inv_inertia.data();
+  const double* __restrict radius = particles.radius_m.data();
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) reduction(max : too_fast)
   for (std::size_t i = 0; i < n; ++i) {
-    Vec3& v = particles.velocity_m_per_s[i];
-    v += particles.force_N[i] * (half_dt * particles.inv_mass_per_kg[i]);
-    particles.angular_velocity_rad_per_s[i] += particles.torque_N_m[i] * (half_dt * particles.inv_inertia[i]);
+    v[i] += f[i] * (half_dt * inv_mass[i]);
+    w[i] += tau[i] * (half_dt * inv_inertia[i]);
     // Moving more than half a radius per step means the contacts are no longer resolved.
-    const double limit = 0.5 * particles.radius_m[i];
-    if (!(norm2(v) * dt * dt <= limit * limit)) too_fast = 1;  // also true for NaN
+    const double limit = 0.5 * radius[i];
+    if (!(norm2(v[i]) * dt * dt <= limit * limit)) too_fast = 1;  // also true for NaN
   }
   if (too_fast) report_blow_up("moved more than half its radius in one step");
 }
@@ -128,7 +143,6 @@ void Simulation::report_blow_up(const std::string& what) const {
 }
 
 void Simulation::compute_forces(double slip_time_s) {
-  const std::size_t n = particles.size();
   const int threads = settings_.threads;
   const double dt = settings_.time_step_s;
   const Vec3 gravity = settings_.gravity_m_per_s2;
@@ -136,17 +150,36 @@ void Simulation::compute_forces(double slip_time_s) {
   const std::size_t n_bodies = walls.bodies.size();
   std::uint64_t particle_contacts = 0, wall_contacts = 0;
 
-  ParticleStore& p = particles;
-  NeighborList& nl = neighbors_;
+  // Raw, non-aliasing views of the arrays: the force writes cannot then make the
+  // compiler reload every other array's address inside the pair loop.
+  const Vec3* __restrict x = particles.position_m.data();
+  const Vec3* __restrict v = particles.velocity_m_per_s.data();
+  const Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
+  const double* __restrict radius = particles.radius_m.data();
+  const double* __restrict mass = particles.mass_kg.data();
+  const double* __restrict inv_mass = particles.inv_mass_per_kg.data();
+  const double* __restrict inv_inertia = particles.inv_inertia.data();
+  const MaterialIndex* __restrict material = particles.material.data();
+  Vec3* __restrict force = particles.force_N.data();
+  Vec3* __restrict torque = particles.torque_N_m.data();
+  const std::uint32_t* __restrict offset = neighbors_.offset.data();
+  const std::uint32_t* __restrict partner = neighbors_.partner.data();
+  Vec3* __restrict history = neighbors_.tangential_history_m.data();
+  const std::uint32_t* __restrict wall_offset = neighbors_.wall_offset.data();
+  const std::uint32_t* __restrict wall_primitive = neighbors_.wall_primitive.data();
+  Vec3* __restrict wall_history = neighbors_.wall_tangential_history_m.data();
+  const WallPrimitive* __restrict primitives = walls.primitives.data();
+  const WallBody* __restrict bodies = walls.bodies.data();
+  const std::uint32_t* thread_begin = neighbors_.thread_begin.data();
   const ContactParameterTable& table = contact_parameters_;
 
 #pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
   {
     const int t = omp_get_thread_num();
-    const std::uint32_t begin = nl.thread_begin[t], end = nl.thread_begin[t + 1];
+    const std::uint32_t begin = thread_begin[t], end = thread_begin[t + 1];
     for (std::uint32_t i = begin; i < end; ++i) {
-      p.force_N[i] = gravity * p.mass_kg[i];
-      p.torque_N_m[i] = {};
+      force[i] = gravity * mass[i];
+      torque[i] = {};
     }
     std::vector<Spill>& spill = spills_[t];
     spill.clear();
@@ -157,60 +190,59 @@ void Simulation::compute_forces(double slip_time_s) {
 #pragma omp barrier
 
     for (std::uint32_t i = begin; i < end; ++i) {
-      const Vec3 xi = p.position_m[i], vi = p.velocity_m_per_s[i], wi = p.angular_velocity_rad_per_s[i];
-      const double ri = p.radius_m[i], inv_mi = p.inv_mass_per_kg[i], inv_ii = p.inv_inertia[i];
-      const MaterialIndex mat_i = p.material[i];
+      const Vec3 xi = x[i], vi = v[i], wi = w[i];
+      const double ri = radius[i], inv_mi = inv_mass[i], inv_ii = inv_inertia[i];
+      const MaterialIndex mat_i = material[i];
       Vec3 force_i, torque_i;
 
-      for (std::uint32_t k = nl.offset[i]; k < nl.offset[i + 1]; ++k) {
-        const std::uint32_t j = nl.partner[k];
-        const Vec3 d = p.position_m[j] - xi;
-        const double rj = p.radius_m[j];
+      for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
+        const std::uint32_t j = partner[k];
+        const Vec3 d = x[j] - xi;
+        const double rj = radius[j];
         const double sum_r = ri + rj;
         const double dist2 = norm2(d);
         if (dist2 >= sum_r * sum_r) {
-          nl.tangential_history_m[k] = {};
+          history[k] = {};
           continue;
         }
         ++particle_contacts;
         const double dist = std::sqrt(dist2);
-        const Vec3 normal = d / dist;
+        const Vec3 normal = d * (1.0 / dist);
         const double overlap = sum_r - dist;
         const double arm_i = ri - 0.5 * overlap, arm_j = rj - 0.5 * overlap;
-        const Vec3 wj = p.angular_velocity_rad_per_s[j];
+        const Vec3 wj = w[j];
         ContactGeometry c;
         c.normal = normal;
         c.overlap_m = overlap;
         c.effective_radius_m = ri * rj / sum_r;
-        c.effective_mass_kg = 1.0 / (inv_mi + p.inv_mass_per_kg[j]);
-        c.relative_velocity_m_per_s = vi - p.velocity_m_per_s[j] + cross(wi * arm_i + wj * arm_j, normal);
+        c.effective_mass_kg = 1.0 / (inv_mi + inv_mass[j]);
+        c.relative_velocity_m_per_s = vi - v[j] + cross(wi * arm_i + wj * arm_j, normal);
         c.relative_angular_velocity_rad_per_s = wi - wj;
-        c.inv_inertia_sum = inv_ii + p.inv_inertia[j];
+        c.inv_inertia_sum = inv_ii + inv_inertia[j];
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
-        const ContactForces f =
-            HertzMindlinLaw::evaluate(table(mat_i, p.material[j]), c, nl.tangential_history_m[k]);
+        const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, material[j]), c, history[k]);
         const Vec3 lever = cross(normal, f.tangential_force_on_i_N);
         force_i += f.force_on_i_N;
         torque_i += lever * arm_i + f.rolling_torque_on_i_N_m;
         const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
         if (j >= begin && j < end) {
-          p.force_N[j] -= f.force_on_i_N;
-          p.torque_N_m[j] += torque_j;
+          force[j] -= f.force_on_i_N;
+          torque[j] += torque_j;
         } else {
           spill.push_back({j, -f.force_on_i_N, torque_j});
         }
       }
 
-      for (std::uint32_t k = nl.wall_offset[i]; k < nl.wall_offset[i + 1]; ++k) {
-        const WallPrimitive& wall = walls.primitives[nl.wall_primitive[k]];
+      for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k) {
+        const WallPrimitive& wall = primitives[wall_primitive[k]];
         const WallProximity prox = closest_wall_point(wall, xi);
         if (!prox.candidate || prox.distance_m >= ri) {
-          nl.wall_tangential_history_m[k] = {};
+          wall_history[k] = {};
           continue;
         }
         ++wall_contacts;
-        const WallMotion& motion = walls.bodies[wall.body].motion;
+        const WallMotion& motion = bodies[wall.body].motion;
         const Vec3 wall_omega = motion.active_at(now) ? motion.angular_velocity_rad_per_s : Vec3{};
         const double arm = prox.distance_m;
         ContactGeometry c;
@@ -224,16 +256,15 @@ void Simulation::compute_forces(double slip_time_s) {
         c.inv_inertia_sum = inv_ii;
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
-        const ContactForces f =
-            HertzMindlinLaw::evaluate(table(mat_i, wall.material), c, nl.wall_tangential_history_m[k]);
+        const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, wall.material), c, wall_history[k]);
         force_i += f.force_on_i_N;
         torque_i += cross(prox.normal, f.tangential_force_on_i_N) * arm + f.rolling_torque_on_i_N_m;
         wall_force[wall.body] -= f.force_on_i_N;
         wall_torque[wall.body] +=
             cross(prox.contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
       }
-      p.force_N[i] += force_i;
-      p.torque_N_m[i] += torque_i;
+      force[i] += force_i;
+      torque[i] += torque_i;
     }
 #pragma omp barrier
     // Contributions to particles of other threads, applied by their owners in thread
@@ -241,8 +272,8 @@ void Simulation::compute_forces(double slip_time_s) {
     for (int s = 0; s < threads; ++s)
       for (const Spill& e : spills_[s])
         if (e.particle >= begin && e.particle < end) {
-          p.force_N[e.particle] += e.force_N;
-          p.torque_N_m[e.particle] += e.torque_N_m;
+          force[e.particle] += e.force_N;
+          torque[e.particle] += e.torque_N_m;
         }
   }
 
@@ -256,7 +287,6 @@ void Simulation::compute_forces(double slip_time_s) {
   }
   stats_.particle_contacts = particle_contacts;
   stats_.wall_contacts = wall_contacts;
-  (void)n;
 }
 
 double Simulation::translational_kinetic_energy_J() const {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -144,6 +145,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     const double max_steps_d = stage.max_duration_s / dt;
     double sample_interval = plan.sample_interval_s;
     if (sample_interval <= 0.0) sample_interval = stage.until_settled ? 0.01 : stage.duration_s / 100.0;
+    sample_interval = std::max(sample_interval, dt);  // a zero-length stage still samples once
     double next_sample_s = sim.time_s();
     auto last_progress_clock = Clock::now();
     std::uint64_t last_progress_step = sim.step_count();

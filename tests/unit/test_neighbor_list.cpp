@@ -1,0 +1,94 @@
+// Neighbour lists: the half list holds exactly the pairs within R_i + R_j + skin (each
+// once) for a 4:1 size mixture, and the contact history follows the particle ids
+// through a rebuild that reorders the particles.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <utility>
+
+#include "contact/neighbor_list.hpp"
+#include "core/rng.hpp"
+
+namespace regodem {
+namespace {
+
+ParticleStore random_mixture(std::size_t n, std::uint64_t seed) {
+  ParticleStore store;
+  Rng rng(seed);
+  for (std::size_t i = 0; i < n; ++i) {
+    NewParticle p;
+    p.radius_m = i % 10 == 0 ? 1.2e-3 : 0.3e-3;  // 0.6 and 2.4 mm diameters
+    p.density_kg_per_m3 = 3000.0;
+    p.position_m = {rng.uniform(0.0, 0.01), rng.uniform(0.0, 0.01), rng.uniform(0.0, 0.01)};
+    store.add(p);
+  }
+  return store;
+}
+
+using IdPair = std::pair<ParticleId, ParticleId>;
+
+IdPair ordered(ParticleId a, ParticleId b) { return {std::min(a, b), std::max(a, b)}; }
+
+TEST(NeighborList, HalfListHoldsExactlyThePairsWithinTheCutoff) {
+  ParticleStore store = random_mixture(1500, 5);
+  const double skin = 0.06e-3;
+  NeighborList list;
+  const CellGrid grid({0, 0, 0}, {0.01, 0.01, 0.01}, 0.6e-3 + skin, 1e6);
+  list.rebuild(store, WallSet{}, grid, skin, 2);
+
+  std::set<IdPair> expected;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    for (std::size_t j = i + 1; j < store.size(); ++j) {
+      const double cutoff = store.radius_m[i] + store.radius_m[j] + skin;
+      if (norm2(store.position_m[i] - store.position_m[j]) < cutoff * cutoff)
+        expected.insert(ordered(store.id[i], store.id[j]));
+    }
+  std::multiset<IdPair> found;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
+      const std::uint32_t j = list.partner[k];
+      EXPECT_TRUE(owns_pair(store.radius_m[i], store.id[i], store.radius_m[j], store.id[j]));
+      found.insert(ordered(store.id[i], store.id[j]));
+    }
+  ASSERT_GT(expected.size(), 100u);
+  EXPECT_EQ(found.size(), expected.size());  // no pair twice
+  EXPECT_EQ(std::set<IdPair>(found.begin(), found.end()), expected);
+}
+
+TEST(NeighborList, HistoryFollowsIdsThroughAReorderingRebuild) {
+  ParticleStore store = random_mixture(800, 9);
+  const double skin = 0.1e-3;
+  const CellGrid grid({0, 0, 0}, {0.01, 0.01, 0.01}, 0.6e-3 + skin, 1e6);
+  NeighborList list;
+  list.rebuild(store, WallSet{}, grid, skin, 1);
+  // A history value that encodes the id pair it belongs to.
+  auto mark = [](ParticleId a, ParticleId b) { return Vec3{double(a), double(b), 1.0}; };
+  std::map<IdPair, Vec3> written;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
+      const ParticleId a = store.id[i], b = store.id[list.partner[k]];
+      list.tangential_history_m[k] = mark(a, b);
+      written[{a, b}] = mark(a, b);
+    }
+  // Mirror the packing (x -> L - x for every coordinate): every distance, and so every
+  // pair, stays; the cell order reverses, so the rebuild reorders the particles, and
+  // it runs on two threads.
+  for (Vec3& x : store.position_m) x = Vec3{0.01, 0.01, 0.01} - x;
+  const std::vector<ParticleId> order_before = store.id;
+  list.rebuild(store, WallSet{}, grid, skin, 2);
+  ASSERT_NE(store.id, order_before);
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
+      const ParticleId a = store.id[i], b = store.id[list.partner[k]];
+      ASSERT_TRUE(written.count({a, b}));
+      EXPECT_EQ(list.tangential_history_m[k], (written[{a, b}]));
+      ++checked;
+    }
+  EXPECT_EQ(checked, written.size());
+}
+
+}  // namespace
+}  // namespace regodem

@@ -39,7 +39,11 @@ void Simulation::rebuild_neighbors() {
       static_cast<double>(grid_.cell_count()) < 0.25 * max_cells)
     grid_ = CellGrid(settings_.domain.min_m, settings_.domain.max_m,
                      2.0 * settings_.min_particle_radius_m + settings_.neighbor_skin_m, max_cells);
-  neighbors_.rebuild(particles, walls, grid_, settings_.neighbor_skin_m, settings_.threads);
+  // Few particles per thread: fewer threads. Decided from the count alone, so a run
+  // stays deterministic for a given thread setting.
+  active_threads_ = static_cast<int>(std::clamp<std::size_t>(particles.size() / settings_.min_particles_per_thread, 1,
+                                                             static_cast<std::size_t>(settings_.threads)));
+  neighbors_.rebuild(particles, walls, grid_, settings_.neighbor_skin_m, active_threads_);
   walls.mark_neighbor_build();
 }
 
@@ -143,7 +147,7 @@ void Simulation::report_blow_up(const std::string& what) const {
 }
 
 void Simulation::compute_forces(double slip_time_s) {
-  const int threads = settings_.threads;
+  const int threads = active_threads_;
   const double dt = settings_.time_step_s;
   const Vec3 gravity = settings_.gravity_m_per_s2;
   const double now = time_s_;

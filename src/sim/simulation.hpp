@@ -28,6 +28,9 @@ struct SimulationSettings {
   double neighbor_skin_m = 0.0;
   double min_particle_radius_m = 0.0;  // sizes the neighbour grid
   int threads = 1;
+  // Below this many particles per thread the force pass is shorter than the threads'
+  // synchronisation, so fewer threads run it.
+  std::size_t min_particles_per_thread = 2500;
 };
 
 /// Contact counts and extremes seen in the last force pass.
@@ -87,6 +90,7 @@ class Simulation {
   double time_s_ = 0.0;
   std::uint64_t step_ = 0;
   bool forces_current_ = false;
+  int active_threads_ = 1;  // threads of the force pass, set at each neighbour build
   ContactStatistics stats_;
 
   struct Spill {  // a contribution to a particle outside the thread's owner range

@@ -20,7 +20,8 @@ struct RollingConstantTorque {
     const double rate = norm(rolling);
     if (rate == 0.0) return {};
     double magnitude = rolling_friction * std::max(elastic_normal_force_N, 0.0) * effective_radius_m;
-    magnitude = std::min(magnitude, rate / (time_step_s * inv_inertia_sum));
+    const double reverses_at = time_step_s * inv_inertia_sum;  // |d omega| per unit torque in one step
+    if (magnitude * reverses_at > rate) return rolling * (-1.0 / reverses_at);
     return rolling * (-magnitude / rate);
   }
 };

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -393,6 +394,40 @@ TEST_F(CliTest, InterruptStopsCleanlyWritesSummaryAndExits130) {
     EXPECT_EQ(summary.at("stages")[0].at("result"), "interrupted");
     EXPECT_LT(summary.at("simulated_time_s").get<double>(), 1000.0);
   }
+}
+
+}  // namespace
+
+namespace {
+
+// Each bad-input fixture: exit status 2, a message naming the file and a line, and no
+// output directory created (nothing ran).
+TEST(CliBadInput, EveryBadFixtureFailsWithFileAndLine) {
+  const fs::path fixtures = fs::path(REGODEM_SOURCE_DIR) / "tests" / "data" / "scenarios";
+  const fs::path work = fs::temp_directory_path() / "regodem-cli-bad-input";
+  fs::remove_all(work);
+  fs::create_directories(work);
+  int checked = 0;
+  for (const char* name : {"missing_material.yaml", "negative_radius.yaml", "region_outside_domain.yaml",
+                           "syntax_error.yaml", "unknown_key.yaml", "wrong_unit.yaml"}) {
+    const CommandResult result = run_regodem({"run", (fixtures / name).string(), "-o", (work / name).string()}, work);
+    EXPECT_EQ(result.exit_code, 2) << name << ":\n" << result.output;
+    EXPECT_TRUE(std::regex_search(result.output, std::regex(std::string(name) + ":[0-9]+:")))
+        << name << ":\n" << result.output;
+    EXPECT_FALSE(fs::exists(work / name)) << name;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 6);
+}
+
+// A time step above the stable one is refused with the numbers (the limit and the
+// Rayleigh time), before anything runs.
+TEST(CliBadInput, TimeStepAboveTheStableOneIsRefused) {
+  const fs::path minimal = fs::path(REGODEM_SOURCE_DIR) / "tests" / "data" / "scenarios" / "minimal.yaml";
+  const CommandResult result = run_regodem({"validate", minimal.string(), "--set", "time_step=1e-3 s"});
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_TRUE(contains(result.output, "stable limit")) << result.output;
+  EXPECT_TRUE(contains(result.output, "Rayleigh time")) << result.output;
 }
 
 }  // namespace

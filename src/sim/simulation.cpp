@@ -94,7 +94,7 @@ double Simulation::first_half_kick_and_drift() {
     if (!domain.contains(x[i])) escaped = 1;  // also false for NaN
     max_move2 = std::max(max_move2, norm2(x[i] - x_build[i]));
   }
-  if (escaped) report_blow_up("left the domain");
+  if (escaped) report_blow_up("left the domain", time_s_ + dt, step_ + 1);  // during the drift to t + dt
   return std::sqrt(max_move2);
 }
 
@@ -117,10 +117,10 @@ void Simulation::second_half_kick() {
     const double limit = 0.5 * radius[i];
     if (!(norm2(v[i]) * dt * dt <= limit * limit)) too_fast = 1;  // also true for NaN
   }
-  if (too_fast) report_blow_up("moved more than half its radius in one step");
+  if (too_fast) report_blow_up("moved more than half its radius in one step", time_s_, step_);
 }
 
-void Simulation::report_blow_up(const std::string& what) const {
+void Simulation::report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const {
   const double dt = settings_.time_step_s;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Vec3& x = particles.position_m[i];
@@ -134,7 +134,7 @@ void Simulation::report_blow_up(const std::string& what) const {
     throw SimulationError(fmt::format(
         "particle {} {} at t = {:.6g} s (step {}): position ({:.6g}, {:.6g}, {:.6g}) m, speed {:.6g} m/s, "
         "radius {:.6g} m. {}",
-        particles.id[i], state, time_s_, step_, x.x, x.y, x.z, speed, particles.radius_m[i],
+        particles.id[i], state, at_time_s, at_step, x.x, x.y, x.z, speed, particles.radius_m[i],
         escaped && !bad_state && !too_fast
             ? "If it fell through an open side, close the walls or enlarge the domain; if it was "
               "thrown out, try a smaller time step (rayleigh_fraction or time_step)."
@@ -143,7 +143,7 @@ void Simulation::report_blow_up(const std::string& what) const {
                           "in the initial packing.",
                           dt)));
   }
-  throw SimulationError(fmt::format("the simulation became unstable at t = {:.6g} s (step {})", time_s_, step_));
+  throw SimulationError(fmt::format("the simulation became unstable at t = {:.6g} s (step {})", at_time_s, at_step));
 }
 
 void Simulation::compute_forces(double slip_time_s) {

@@ -81,7 +81,7 @@ class Simulation {
   /// Returns the largest displacement since the last neighbour build.
   double first_half_kick_and_drift();
   void second_half_kick();
-  [[noreturn]] void report_blow_up(const std::string& what) const;
+  [[noreturn]] void report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const;
 
   SimulationSettings settings_;
   ContactParameterTable contact_parameters_;

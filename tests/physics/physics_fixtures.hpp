@@ -1,6 +1,7 @@
 #pragma once
 // Small builders for the physics verification tests: one material, a few walls.
 #include <cmath>
+#include <numbers>
 
 #include "sim/simulation.hpp"
 #include "sim/time_step.hpp"
@@ -15,6 +16,16 @@ struct SphereMaterial {
   double sliding_friction = 0.0;
   double rolling_friction = 0.0;
 };
+
+/// E* of two bodies of this material: E / (2 (1 - nu^2)), E = 2G(1 + nu).
+inline double effective_youngs_modulus(const SphereMaterial& m) {
+  const double youngs = 2.0 * m.shear_modulus * (1.0 + m.poisson);
+  return youngs / (2.0 * (1.0 - m.poisson * m.poisson));
+}
+
+inline double sphere_mass(const SphereMaterial& m, double radius) {
+  return m.density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+}
 
 inline MaterialTable one_material(const SphereMaterial& m) {
   MaterialTable table;

@@ -97,9 +97,8 @@ TEST(Restitution, ErrorFallsWithTimeStep) {
 // e close to 1: duration within 2 % of Hertz theory, at a step of 0.02 T_R.
 TEST(Restitution, ContactDurationMatchesHertz) {
   SphereMaterial m;
-  const double E = 2.0 * m.shear_modulus * (1.0 + m.poisson);
-  const double e_star = E / (2.0 * (1.0 - m.poisson * m.poisson));
-  const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * std::pow(kRadius, 3);
+  const double e_star = effective_youngs_modulus(m);
+  const double mass = sphere_mass(m, kRadius);
   const double expected_pair = hertz_duration_s(mass / 2.0, e_star, kRadius / 2.0, kSpeed);
   EXPECT_NEAR(sphere_sphere(0.99, 0.02).duration_s, expected_pair, 0.02 * expected_pair);
   const double expected_wall = hertz_duration_s(mass, e_star, kRadius, kSpeed);

@@ -26,8 +26,7 @@ EnergyErrors energy_errors(double rayleigh_fraction) {
   Simulation sim(one_material(m), WallSet{}, settings_for(kRadius, dt));
   sim.add_particle(sphere({-1.01 * kRadius, 0, 0}, {0.05, 0, 0}, kRadius, m.density));
   sim.add_particle(sphere({1.01 * kRadius, 0, 0}, {-0.05, 0, 0}, kRadius, m.density));
-  const double youngs = 2.0 * m.shear_modulus * (1.0 + m.poisson);
-  const double e_star = youngs / (2.0 * (1.0 - m.poisson * m.poisson));
+  const double e_star = effective_youngs_modulus(m);
   auto total_energy = [&] {
     const double overlap = 2.0 * kRadius - norm(sim.particles.position_m[1] - sim.particles.position_m[0]);
     const double elastic =

@@ -32,9 +32,8 @@ Slope sphere_on_slope(const SphereMaterial& m, double angle, bool lock_rotation,
   const Vec3 gravity{kG * std::sin(angle), 0.0, -kG * std::cos(angle)};
   Slope s{Simulation(one_material(m), walls, settings_for(kRadius, dt, gravity, 1.0)), dt};
   // Equilibrium overlap of a sphere on a plane: F = 4/3 E* sqrt(R) delta^{3/2}.
-  const double E = 2.0 * m.shear_modulus * (1.0 + m.poisson);
-  const double e_star = E / (2.0 * (1.0 - m.poisson * m.poisson));
-  const double mass = m.density * 4.0 / 3.0 * std::numbers::pi * std::pow(kRadius, 3);
+  const double e_star = effective_youngs_modulus(m);
+  const double mass = sphere_mass(m, kRadius);
   const double delta = std::pow(3.0 * mass * kG * std::cos(angle) / (4.0 * e_star * std::sqrt(kRadius)), 2.0 / 3.0);
   NewParticle p = sphere({0, 0, kRadius - delta}, velocity, kRadius, m.density);
   p.angular_velocity_rad_per_s = omega;

@@ -58,15 +58,4 @@ bool InsertionRegion::sample_centre(Rng& rng, double r, Vec3& centre) const {
   return true;
 }
 
-bool InsertionRegion::contains(const Vec3& x) const {
-  if (shape == InsertionShape::box)
-    return x.x >= min_m.x && x.y >= min_m.y && x.z >= min_m.z && x.x <= max_m.x && x.y <= max_m.y && x.z <= max_m.z;
-  const Vec3 offset = x - base_m;
-  const double along = dot(offset, axis);
-  if (along < 0.0 || along > length_m) return false;
-  const double rho2 = norm2(offset - axis * along);
-  const double inner = shape == InsertionShape::annulus ? inner_radius_m : 0.0;
-  return rho2 <= radius_m * radius_m && rho2 >= inner * inner;
-}
-
 }  // namespace regodem

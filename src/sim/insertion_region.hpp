@@ -24,7 +24,6 @@ struct InsertionRegion {
   /// A uniformly random centre for a sphere of radius r lying wholly inside; false if
   /// the sphere does not fit at all.
   bool sample_centre(Rng& rng, double radius_m, Vec3& centre_m) const;
-  bool contains(const Vec3& x) const;
 };
 
 }  // namespace regodem

@@ -11,6 +11,36 @@
 
 namespace regodem {
 
+namespace {
+
+/// The velocity-Verlet half kick, v += F dt/(2m) and omega += tau dt/(2I), over raw
+/// non-aliasing views of the arrays; both halves of the step use it.
+struct HalfKick {
+  Vec3* __restrict velocity;
+  Vec3* __restrict angular_velocity;
+  const Vec3* __restrict force;
+  const Vec3* __restrict torque;
+  const double* __restrict inv_mass;
+  const double* __restrict inv_inertia;
+  double half_dt;
+
+  HalfKick(ParticleStore& p, double half_dt_s)
+      : velocity(p.velocity_m_per_s.data()),
+        angular_velocity(p.angular_velocity_rad_per_s.data()),
+        force(p.force_N.data()),
+        torque(p.torque_N_m.data()),
+        inv_mass(p.inv_mass_per_kg.data()),
+        inv_inertia(p.inv_inertia.data()),
+        half_dt(half_dt_s) {}
+
+  void operator()(std::size_t i) const {
+    velocity[i] += force[i] * (half_dt * inv_mass[i]);
+    angular_velocity[i] += torque[i] * (half_dt * inv_inertia[i]);
+  }
+};
+
+}  // namespace
+
 Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const SimulationSettings& settings)
     : materials(std::move(materials_in)),
       walls(std::move(walls_in)),
@@ -76,20 +106,15 @@ double Simulation::first_half_kick_and_drift() {
   const std::vector<Vec3>& at_build = neighbors_.positions_at_build_m();
   int escaped = 0;
   double max_move2 = 0.0;
+  const HalfKick kick(particles, half_dt);
   Vec3* __restrict x = particles.position_m.data();
-  Vec3* __restrict v = particles.velocity_m_per_s.data();
-  Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
-  const Vec3* __restrict f = particles.force_N.data();
-  const Vec3* __restrict tau = particles.torque_N_m.data();
-  const double* __restrict inv_mass = particles.inv_mass_per_kg.data();
-  const double* __restrict inv_inertia = particles.inv_inertia.data();
+  const Vec3* __restrict v = particles.velocity_m_per_s.data();
   const Vec3* __restrict x_build = at_build.data();
   const Domain domain = settings_.domain;
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) \
     reduction(max : escaped, max_move2)
   for (std::size_t i = 0; i < n; ++i) {
-    v[i] += f[i] * (half_dt * inv_mass[i]);
-    w[i] += tau[i] * (half_dt * inv_inertia[i]);
+    kick(i);
     x[i] += v[i] * dt;
     if (!domain.contains(x[i])) escaped = 1;  // also false for NaN
     max_move2 = std::max(max_move2, norm2(x[i] - x_build[i]));
@@ -102,17 +127,12 @@ void Simulation::second_half_kick() {
   const double dt = settings_.time_step_s, half_dt = 0.5 * dt;
   const std::size_t n = particles.size();
   int too_fast = 0;
-  Vec3* __restrict v = particles.velocity_m_per_s.data();
-  Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
-  const Vec3* __restrict f = particles.force_N.data();
-  const Vec3* __restrict tau = particles.torque_N_m.data();
-  const double* __restrict inv_mass = particles.inv_mass_per_kg.data();
-  const double* __restrict inv_inertia = particles.inv_inertia.data();
+  const HalfKick kick(particles, half_dt);
+  const Vec3* __restrict v = particles.velocity_m_per_s.data();
   const double* __restrict radius = particles.radius_m.data();
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) reduction(max : too_fast)
   for (std::size_t i = 0; i < n; ++i) {
-    v[i] += f[i] * (half_dt * inv_mass[i]);
-    w[i] += tau[i] * (half_dt * inv_inertia[i]);
+    kick(i);
     // Moving more than half a radius per step means the contacts are no longer resolved.
     const double limit = 0.5 * radius[i];
     if (!(norm2(v[i]) * dt * dt <= limit * limit)) too_fast = 1;  // also true for NaN

@@ -28,6 +28,7 @@
 #include "scenario/scenario_builder.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "signal_handling.hpp"
+#include "sim/simulation.hpp"
 
 namespace regodem::app {
 namespace {
@@ -129,6 +130,8 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   summary.scenario_hash = spec.content_hash;
   summary.scenario_copy = scenario_copy_file;
   summary.overrides = options.overrides;
+  const HeatSettings& heat = prepared.simulation().settings().heat;
+  summary.heat = {heat.enabled, heat.time_scale_factor, heat.friction_heating, heat.friction_partition};
   const StageResult unfinished =
       ending.status == RunStatus::interrupted ? StageResult::interrupted : StageResult::failed;
   summary.stages = recorder.stage_summaries(outcome.simulated_time_s, unfinished);

@@ -32,12 +32,15 @@ struct ContactLaw {
         Tangential::stiffness(p.effective_shear_modulus_Pa, normal.contact_radius_m);
     const double tangential_damping =
         Damping::coefficient(p.damping_factor, tangential_stiffness, c.effective_mass_kg);
+    bool sliding = false;
     const Vec3 tangential = Tangential::evaluate(
         tangential_history_m, c.normal, tangential_velocity, tangential_stiffness, tangential_damping,
-        p.sliding_friction * std::max(normal_force, 0.0), c.slip_time_s);
+        p.sliding_friction * std::max(normal_force, 0.0), c.slip_time_s, sliding);
 
     ContactForces out;
     out.elastic_normal_force_N = normal.elastic_force_N;
+    out.contact_radius_m = normal.contact_radius_m;
+    out.sliding_power_W = sliding ? std::abs(dot(tangential, tangential_velocity)) : 0.0;
     out.tangential_force_on_i_N = tangential;
     out.force_on_i_N = tangential - normal_force * c.normal;
     out.rolling_torque_on_i_N_m = Rolling::evaluate(

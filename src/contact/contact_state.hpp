@@ -24,6 +24,8 @@ struct ContactForces {
   Vec3 tangential_force_on_i_N;    // its tangential part, which makes torques
   Vec3 rolling_torque_on_i_N_m;    // j feels the opposite
   double elastic_normal_force_N = 0.0;  // F_n^e, also what conduction uses (DESIGN.md Eq. 1)
+  double contact_radius_m = 0.0;        // a = sqrt(R* delta_n) for Hertz, the conduction laws' a
+  double sliding_power_W = 0.0;         // |F_t . v_t| while sliding (Coulomb-limited), else 0
 };
 
 }  // namespace regodem

@@ -15,10 +15,11 @@ struct MindlinTangential {
     return 8.0 * effective_shear_Pa * contact_radius_m;
   }
 
-  /// Updates the history and returns the tangential force on i.
+  /// Updates the history and returns the tangential force on i; `sliding` says whether
+  /// the Coulomb limit cut it (friction then dissipates |F_t . v_t|).
   static Vec3 evaluate(Vec3& history_m, const Vec3& normal, const Vec3& tangential_velocity,
                        double stiffness_N_per_m, double damping_N_s_per_m, double coulomb_limit_N,
-                       double time_step_s) {
+                       double time_step_s, bool& sliding) {
     const double off_plane = dot(history_m, normal);
     if (off_plane != 0.0) {
       const double length2 = norm2(history_m);
@@ -30,7 +31,8 @@ struct MindlinTangential {
     const Vec3 damping_force = tangential_velocity * damping_N_s_per_m;
     Vec3 force = -(history_m * stiffness_N_per_m) - damping_force;
     const double force2 = norm2(force);
-    if (force2 > coulomb_limit_N * coulomb_limit_N) {
+    sliding = force2 > coulomb_limit_N * coulomb_limit_N;
+    if (sliding) {
       force *= coulomb_limit_N / std::sqrt(force2);
       history_m = -(force + damping_force) / stiffness_N_per_m;
     }

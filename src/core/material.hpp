@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/particle_store.hpp"
+#include "core/temperature_curve.hpp"
 
 namespace regodem {
 
@@ -13,10 +14,26 @@ struct Material {
   double density_kg_per_m3 = 0.0;
   double shear_modulus_Pa = 0.0;
   double poisson_ratio = 0.0;
+  // Thermal properties (DESIGN.md section 2, "Conduction"); constants or tables over T.
+  TemperatureCurve conductivity_W_per_mK{0.0};
+  TemperatureCurve specific_heat_J_per_kgK{0.0};
+  // The modulus of the real material when shear_modulus_Pa is reduced to allow a larger
+  // time step; 0 = the same. Conduction's contact radius then uses E*_real.
+  double real_shear_modulus_Pa = 0.0;
 
   /// E = 2G(1+nu).
   double youngs_modulus_Pa() const { return 2.0 * shear_modulus_Pa * (1.0 + poisson_ratio); }
+  double real_youngs_modulus_Pa() const {
+    return 2.0 * (real_shear_modulus_Pa > 0.0 ? real_shear_modulus_Pa : shear_modulus_Pa) * (1.0 + poisson_ratio);
+  }
 };
+
+/// How a contact conducts heat (G = conductance, Q_ij = G (T_j - T_i)), per material pair:
+///  force:  G = 2 k_c a, a = (3 F_n^e R* / (4 E*_real))^(1/3)  (the paper's Eq. 1, EDEM)
+///  radius: G = 2 k_c a, a = sqrt(R* delta_n)                   (LAMMPS "heat radius")
+///  area:   G = h pi a^2, a = sqrt(R* delta_n)                  (LAMMPS "heat area")
+///  none:   no conduction.
+enum class ConductionLaw : std::uint8_t { force, radius, area, none };
 
 /// What the scenario says about two materials in contact (DESIGN.md section 2).
 struct PairProperties {
@@ -24,6 +41,8 @@ struct PairProperties {
   double sliding_friction = 0.5;
   double rolling_friction = 0.0;
   bool clamp_attractive_normal_force = false;  // EDEM default: no clamping
+  ConductionLaw conduction = ConductionLaw::force;
+  double heat_transfer_coefficient_W_per_m2K = 0.0;  // the area law's h
 };
 
 /// Materials plus a symmetric table of pair properties, indexed by material index.

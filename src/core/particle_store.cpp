@@ -20,6 +20,9 @@ std::size_t ParticleStore::add(const NewParticle& p) {
   torque_N_m.push_back({});
   material.push_back(p.material);
   region.push_back(p.region);
+  temperature_K.push_back(p.temperature_K);
+  heat_flow_W.push_back(0.0);
+  conductivity_W_per_mK.push_back(0.0);  // set by the simulation from the material
   return id.size() - 1;
 }
 

@@ -23,6 +23,7 @@ struct NewParticle {
   double density_kg_per_m3 = 0.0;
   MaterialIndex material = 0;
   RegionTag region = 0;
+  double temperature_K = 0.0;
 };
 
 class ParticleStore {
@@ -40,13 +41,16 @@ class ParticleStore {
   std::vector<Vec3> torque_N_m;
   std::vector<MaterialIndex> material;
   std::vector<RegionTag> region;
+  std::vector<double> temperature_K;
+  std::vector<double> heat_flow_W;            // net heat into the particle, summed in the contact pass
+  std::vector<double> conductivity_W_per_mK;  // k at the particle's temperature
 
   /// Calls f(vector&) for every per-particle field: the one list of fields.
   template <class F>
   void for_each_field(F&& f) {
     f(id); f(radius_m); f(mass_kg); f(inv_mass_per_kg); f(inv_inertia);
     f(position_m); f(velocity_m_per_s); f(angular_velocity_rad_per_s); f(force_N); f(torque_N_m);
-    f(material); f(region);
+    f(material); f(region); f(temperature_K); f(heat_flow_W); f(conductivity_W_per_mK);
   }
 
   std::size_t size() const { return id.size(); }

@@ -55,6 +55,15 @@ void WallSet::add_cylinder(std::uint32_t body, const Vec3& base_centre_m, const 
   if (cap_top) add_disk(body, base_centre_m + length_m * p.axis, p.axis, radius_m, material);
 }
 
+void WallSet::add_sieve_segment(std::uint32_t body, const Vec3& base_centre_m, const Vec3& axis, double radius_m,
+                                double length_m, bool outer_bottom_end, bool outer_top_end, bool cap_bottom,
+                                MaterialIndex material) {
+  add_cylinder(body, base_centre_m, axis, radius_m, length_m, true, true, cap_bottom, false, material);
+  WallPrimitive& shell = primitives[primitives.size() - (cap_bottom ? 2 : 1)];
+  shell.rim_bottom = !cap_bottom && outer_bottom_end;
+  shell.rim_top = outer_top_end;
+}
+
 void WallSet::advance(double time_s, double dt_s) {
   for (std::uint32_t b = 0; b < bodies.size(); ++b) {
     WallBody& body = bodies[b];

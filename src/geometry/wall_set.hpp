@@ -31,6 +31,14 @@ class WallSet {
                     double length_m, bool contact_inside, bool contact_outside, bool cap_bottom,
                     bool cap_top, MaterialIndex material);
 
+  /// One segment of a segmented cylinder ("thermal sieve", DESIGN.md section 2):
+  /// contact from both sides; an open end has an edge only where it is an end of the
+  /// whole sieve (interior joints have none, or a particle there would feel two edges);
+  /// cap_bottom closes the segment's bottom with a two-sided disk.
+  void add_sieve_segment(std::uint32_t body, const Vec3& base_centre_m, const Vec3& axis, double radius_m,
+                         double length_m, bool outer_bottom_end, bool outer_top_end, bool cap_bottom,
+                         MaterialIndex material);
+
   /// Moves the walls whose motion is active during [time_s, time_s + dt_s).
   void advance(double time_s, double dt_s);
   /// Largest wall translation since the neighbour list was built.

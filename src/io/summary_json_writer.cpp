@@ -65,6 +65,10 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
                       {"hash", summary.scenario_hash},
                       {"copy", summary.scenario_copy},
                       {"overrides", summary.overrides}};
+  json["heat"] = {{"enabled", summary.heat.enabled},
+                  {"time_scale_factor", number_or_null(summary.heat.time_scale_factor)},
+                  {"friction_heating", summary.heat.friction_heating},
+                  {"friction_partition", number_or_null(summary.heat.friction_partition)}};
   json["stages"] = nlohmann::ordered_json::array();
   for (const StageSummary& stage : summary.stages) json["stages"].push_back(stage_to_json(stage));
   json["notices"] = summary.notices;

@@ -31,6 +31,15 @@ struct StageSummary {
   std::string message;  // why it failed or was interrupted
 };
 
+/// Heat transfer settings of the run (DESIGN.md section 2): S must be known to read
+/// the run's times as physical heating times.
+struct HeatSummary {
+  bool enabled = false;
+  double time_scale_factor = 1.0;
+  bool friction_heating = false;
+  double friction_partition = 0.5;
+};
+
 struct RunSummary {
   RunStatus status = RunStatus::failed;
   std::string message;
@@ -50,6 +59,7 @@ struct RunSummary {
   std::string scenario_hash;
   std::string scenario_copy;        // file name of the copy in the output directory
   std::vector<std::string> overrides;  // --set key.path=value, in the order applied
+  HeatSummary heat;
   std::vector<StageSummary> stages;
   std::vector<std::string> notices;  // what the run told the user (a full insertion region...)
 };

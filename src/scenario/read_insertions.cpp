@@ -226,6 +226,90 @@ void read_file_insertion(const YamlSection& section, const ScenarioReferences& r
   insertion.from_file = path.string();
 }
 
+/// A static-bed stage freezes the particles: nothing can be inserted during it.
+void check_stage_is_coupled(const YamlSection& section, const ScenarioReferences& references,
+                            const InsertionSpec& insertion) {
+  if (references.static_stage_names.empty() || references.stage_names.empty()) return;
+  const std::string& stage = insertion.stage.empty() ? references.stage_names.front() : insertion.stage;
+  for (const std::string& frozen : references.static_stage_names) {
+    if (frozen != stage) continue;
+    const std::string message = fmt::format(
+        "stage '{}' is a static-bed stage (particles do not move in it), so nothing can be inserted "
+        "during it: insert in an earlier stage with `heat_stepping: coupled` (a short one is enough "
+        "for particles from a file)",
+        stage);
+    if (const auto stage_value = section.get("stage")) {
+      stage_value->error(message);
+    } else {
+      section.error(message + "; without 'stage' an insertion belongs to the first stage");
+    }
+  }
+}
+
+/// The lowest value of the linear field over the region (where the region is known):
+/// min of g.(x - p) is reached at a corner of a box, and for a cylinder at an end, on
+/// the rim, opposite the gradient's radial part.
+double coldest_in_region_K(const InitialTemperatureSpec& field, const RegionSpec& region) {
+  const Vec3& g = field.gradient_K_per_m;
+  double lowest = field.value_K - dot(g, field.reference_point_m);
+  if (region.shape == RegionShape::box) {
+    for (int axis = 0; axis < 3; ++axis) {
+      lowest += std::min(g[axis] * region.min_m[axis], g[axis] * region.max_m[axis]);
+    }
+    return lowest;
+  }
+  const Vec3 axis = normalized(region.axis);
+  const double along = dot(g, axis);
+  lowest += dot(g, region.base_m) + std::min(0.0, along * region.length_m);
+  return lowest - region.radius_m * norm(g - axis * along);
+}
+
+/// `temperature: -196 degC`, or a linear field
+/// `{value: -196 degC, gradient: [0, 0, 100 K/m], reference_point: [0, 0, 0]}`.
+std::optional<InitialTemperatureSpec> read_initial_temperature(const YamlValue& value) {
+  InitialTemperatureSpec field;
+  if (!value.node().IsMap()) {
+    const auto temperature = value.quantity(Dimension::temperature);
+    if (!temperature) return std::nullopt;
+    field.value_K = *temperature;
+    return field;
+  }
+  const auto section = value.section();
+  section->allow_only({"value", "gradient", "reference_point"});
+  const auto temperature = section->required_quantity("value", Dimension::temperature);
+  const auto gradient = section->vector("gradient", Dimension::temperature_gradient);
+  const auto reference = section->vector("reference_point", Dimension::length);
+  if (!temperature || (section->has("gradient") && !gradient) ||
+      (section->has("reference_point") && !reference)) {
+    return std::nullopt;
+  }
+  field.value_K = *temperature;
+  field.gradient_K_per_m = gradient.value_or(Vec3{});
+  field.reference_point_m = reference.value_or(Vec3{});
+  return field;
+}
+
+void read_insertion_temperature(const YamlSection& section, const ScenarioReferences& references,
+                                InsertionSpec& insertion) {
+  const auto value = section.get("temperature");
+  if (!value) {
+    // A file may give every particle its temperature; the builder checks that.
+    if (references.heat_enabled && section.has("region")) {
+      section.error("heat is on: give the particles' initial 'temperature' (e.g. -196 degC)");
+    }
+    return;
+  }
+  insertion.temperature = read_initial_temperature(*value);
+  // The region's `where` is set only once it has been read without problems.
+  if (!insertion.temperature || !section.has("region") || insertion.region.where.key.empty()) return;
+  if (norm2(insertion.temperature->gradient_K_per_m) == 0.0) return;
+  const double coldest = coldest_in_region_K(*insertion.temperature, insertion.region);
+  if (coldest < 0.0) {
+    value->error(fmt::format("the temperature field falls below absolute zero in the region (to {:.4g} K)",
+                             coldest));
+  }
+}
+
 std::optional<InsertionSpec> read_insertion(const YamlValue& item,
                                             const ScenarioReferences& references) {
   const auto section = item.section();
@@ -233,7 +317,8 @@ std::optional<InsertionSpec> read_insertion(const YamlValue& item,
   InsertionSpec insertion;
   insertion.where = item.where();
   const auto source = section->exactly_one_of({"region", "file"});
-  std::vector<std::string> allowed{"name", "region_tag", "material", "stage", "region", "file"};
+  std::vector<std::string> allowed{"name", "region_tag", "material", "stage",
+                                   "region", "file", "temperature"};
   std::vector<std::pair<std::string, std::string>> misplaced;
   for (const std::string& key : kRegionInsertionKeys) {
     if (source == "file") {
@@ -255,8 +340,10 @@ std::optional<InsertionSpec> read_insertion(const YamlValue& item,
   if (const auto stage = section->get("stage")) {
     insertion.stage = read_reference(*stage, references.stage_names, "stage").value_or("");
   }
+  check_stage_is_coupled(*section, references, insertion);
   if (source == "region") read_random_insertion(*section, references, insertion);
   if (source == "file") read_file_insertion(*section, references, insertion);
+  read_insertion_temperature(*section, references, insertion);
   if (!name) return std::nullopt;
   return insertion;
 }

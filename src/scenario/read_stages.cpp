@@ -1,5 +1,5 @@
-// The `stages` list (end conditions and temporary contact overrides) and the `output`
-// section.
+// The `stages` list (end conditions, temporary contact overrides, how heat advances)
+// and the `output` section.
 #include <cmath>
 
 #include <fmt/format.h>
@@ -79,6 +79,52 @@ void read_settled_end(const YamlSection& section, StageSpec& stage) {
   }
 }
 
+const std::vector<std::string> kStaticStageKeys{"thermal_time_step", "stability_fraction"};
+
+bool is_fraction_of_one(double value) { return value > 0.0 && value <= 1.0; }
+
+/// `heat_stepping` and, for the static-bed methods, their step. A static stage freezes
+/// the mechanics, so it ends by time and changes no contact property.
+void read_heat_stepping(const YamlSection& section, const ScenarioReferences& references,
+                        StageSpec& stage) {
+  const auto value = section.get("heat_stepping");
+  if (!value) return;
+  const auto method = value->choice(
+      {"coupled", "static_explicit", "static_backward_euler", "static_crank_nicolson"});
+  if (!method) return;
+  stage.heat_stepping = *method == "coupled"                 ? ThermalStepping::coupled
+                        : *method == "static_explicit"       ? ThermalStepping::static_explicit
+                        : *method == "static_backward_euler" ? ThermalStepping::static_backward_euler
+                                                             : ThermalStepping::static_crank_nicolson;
+  if (stage.heat_stepping == ThermalStepping::coupled) return;
+  if (!references.heat_enabled) {
+    value->error(references.heat_section
+                     ? "a static-bed stage only moves heat, but heat is off (`heat: {enabled: false}`)"
+                     : "a static-bed stage only moves heat, but heat transfer is off: add a top-level "
+                       "`heat:` section (e.g. `heat: {}`)");
+  }
+  if (section.has("until")) {
+    section.get("until")->error(fmt::format(
+        "a static-bed stage ({}) does not move particles, so it cannot wait for them to settle: "
+        "give its 'duration'",
+        *method));
+  }
+  if (section.has("overrides")) {
+    section.get("overrides")->error(fmt::format(
+        "a static-bed stage ({}) freezes the mechanics: contact overrides would change nothing",
+        *method));
+  }
+  section.at_most_one_of(kStaticStageKeys);
+  stage.thermal_time_step_s = read_checked_quantity(section, "thermal_time_step", Dimension::time,
+                                                    Presence::optional, is_positive,
+                                                    "be greater than 0")
+                                  .value_or(0.0);
+  stage.stability_fraction =
+      read_checked_quantity(section, "stability_fraction", Dimension::dimensionless,
+                            Presence::optional, is_fraction_of_one, "be greater than 0 and at most 1")
+          .value_or(stage.stability_fraction);
+}
+
 /// Always returns the stage, complete or not, so that insertions naming it are not
 /// reported as well; an incomplete one has already been reported.
 StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references) {
@@ -87,13 +133,25 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
   const auto section = item.section();
   if (!section) return stage;
   const bool settled = section->has("until");
-  std::vector<std::string> allowed{"name", "duration", "until", "overrides"};
+  // Judged from the text so that the keys can be checked before the value is.
+  const auto stepping = section->get("heat_stepping");
+  const bool frozen = stepping && stepping->node().IsScalar() &&
+                      stepping->node().Scalar().starts_with("static_");
+  std::vector<std::string> allowed{"name", "duration", "until", "overrides", "heat_stepping"};
   std::vector<std::pair<std::string, std::string>> misplaced;
   for (const std::string& key : kSettledKeys) {
     if (settled) {
       allowed.push_back(key);
     } else {
       misplaced.emplace_back(key, "only with 'until: settled'");
+    }
+  }
+  for (const std::string& key : kStaticStageKeys) {
+    if (frozen) {
+      allowed.push_back(key);
+    } else {
+      misplaced.emplace_back(key, "only for a static-bed stage (heat_stepping: static_...); a "
+                                  "coupled stage moves heat at every mechanical step");
     }
   }
   section->allow_only(allowed, misplaced);
@@ -110,6 +168,7 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
     if (section->get("until")->choice({"settled"})) read_settled_end(*section, stage);
   }
 
+  read_heat_stepping(*section, references, stage);
   if (const auto overrides = section->get("overrides")) {
     if (const auto items = overrides->items()) {
       for (const YamlValue& override_item : *items) {

@@ -1,4 +1,5 @@
-// The `walls` list: analytic planes, disks and cylinder shells, with prescribed motion.
+// The `walls` list: analytic planes, disks, cylinder shells and segmented sieves, with
+// prescribed motion and a thermal mode.
 #include <cmath>
 
 #include <fmt/format.h>
@@ -9,7 +10,7 @@
 namespace regodem {
 namespace {
 
-const std::vector<std::string> kCommonKeys{"name", "type", "material", "motion"};
+const std::vector<std::string> kCommonKeys{"name", "type", "material", "motion", "thermal"};
 
 std::vector<std::string> keys_for(WallShape shape) {
   std::vector<std::string> keys = kCommonKeys;
@@ -22,6 +23,9 @@ std::vector<std::string> keys_for(WallShape shape) {
       break;
     case WallShape::cylinder:
       keys.insert(keys.end(), {"base", "axis", "radius", "diameter", "length", "contact", "ends"});
+      break;
+    case WallShape::sieve:
+      keys.insert(keys.end(), {"base", "axis", "radius", "diameter", "length", "segments", "ends"});
       break;
   }
   return keys;
@@ -44,7 +48,14 @@ std::vector<std::pair<std::string, std::string>> misplaced_keys(WallShape shape)
     case WallShape::cylinder:
       return {{"point", "a cylinder takes 'base', the centre of its bottom end"},
               {"center", "a cylinder takes 'base', the centre of its bottom end"},
-              {"normal", "a cylinder takes 'axis', from its bottom end to its top"}};
+              {"normal", "a cylinder takes 'axis', from its bottom end to its top"},
+              {"segments", "only a sieve has segments"}};
+    case WallShape::sieve:
+      return {{"point", "a sieve takes 'base', the centre of the bottom end of its lowest segment"},
+              {"center", "a sieve takes 'base', the centre of the bottom end of its lowest segment"},
+              {"normal", "a sieve takes 'axis', from its bottom end to its top"},
+              {"contact", "particles meet a sieve from both sides"},
+              {"cap_bottom", "a sieve takes 'ends: {bottom: capped}' to close its lowest segment"}};
   }
   return {};
 }
@@ -103,7 +114,11 @@ void read_motion(const YamlValue& value, WallSpec& wall) {
 void read_cylinder_ends(const YamlValue& value, WallSpec& wall) {
   const auto section = value.section();
   if (!section) return;
-  section->allow_only({"bottom", "top"});
+  if (wall.shape == WallShape::sieve) {
+    section->allow_only({"bottom"}, {{"top", "the top of a sieve is open"}});
+  } else {
+    section->allow_only({"bottom", "top"});
+  }
   const std::vector<std::string> options{"open", "capped"};
   if (const auto bottom = section->get("bottom")) {
     wall.cap_bottom = bottom->choice(options).value_or("open") == "capped";
@@ -117,16 +132,16 @@ void read_shape(const YamlSection& section, const ScenarioReferences& references
   const char* point_key = "point";
   const char* direction_key = "normal";
   if (wall.shape == WallShape::disk) point_key = "center";
-  if (wall.shape == WallShape::cylinder) {
+  const bool cylindrical = wall.shape == WallShape::cylinder || wall.shape == WallShape::sieve;
+  if (cylindrical) {
     point_key = "base";
     direction_key = "axis";
   }
   const auto point = section.required_vector(point_key, Dimension::length);
   // A cylinder is usually upright, so its axis defaults to +z; a plane or disk must say
   // which side the particles are on.
-  const auto direction = read_direction(
-      section, direction_key,
-      wall.shape == WallShape::cylinder ? Presence::optional : Presence::required);
+  const auto direction = read_direction(section, direction_key,
+                                        cylindrical ? Presence::optional : Presence::required);
   if (point) wall.point_m = *point;
   if (direction) wall.normal = *direction;
 
@@ -159,8 +174,147 @@ void read_shape(const YamlSection& section, const ScenarioReferences& references
       }
       break;
     }
+    case WallShape::sieve: {
+      const auto radius = read_radius(section, "radius", "diameter", Presence::required);
+      const auto length = read_checked_quantity(section, "length", Dimension::length,
+                                                Presence::required, is_positive,
+                                                "be greater than 0");
+      std::optional<std::uint64_t> segments;
+      if (const auto segments_value = section.require("segments")) {
+        segments = segments_value->whole_number();
+        // Each segment is a wall body with its own temperature; the bound only keeps
+        // the count an int.
+        constexpr std::uint64_t kMostSegments = 65536;
+        if (segments && (*segments == 0 || *segments > kMostSegments)) {
+          segments_value->error(fmt::format("must be at least 1 and at most {}, got '{}'", kMostSegments,
+                                            segments_value->node().Scalar()));
+          segments.reset();
+        }
+      }
+      if (radius) wall.radius_m = *radius;
+      if (length) wall.length_m = *length;
+      if (segments) wall.segments = static_cast<int>(*segments);
+      wall.side = CylinderSide::both;
+      if (const auto ends = section.get("ends")) read_cylinder_ends(*ends, wall);
+      if (point && (direction || !section.has(direction_key)) && radius && length && segments) {
+        extent = cylinder_bounds(*point, wall.normal, *radius,
+                                 *length * static_cast<double>(wall.segments));
+      }
+      break;
+    }
   }
   if (extent) check_inside_domain(section.value(), *extent, references, "the wall");
+}
+
+const std::vector<std::string> kThermalKeys{"mode", "temperature", "conductivity",
+                                           "conductivity_mix", "specific_heat", "mass",
+                                           "areal_density"};
+
+/// The keys a thermal mode takes, and why the others do not belong.
+std::vector<std::string> thermal_keys_for(WallThermalModeSpec mode) {
+  switch (mode) {
+    case WallThermalModeSpec::adiabatic: return {"mode"};
+    case WallThermalModeSpec::fixed: return {"mode", "temperature", "conductivity", "conductivity_mix"};
+    case WallThermalModeSpec::lumped: return kThermalKeys;
+  }
+  return kThermalKeys;
+}
+
+std::vector<std::pair<std::string, std::string>> misplaced_thermal_keys(WallThermalModeSpec mode) {
+  if (mode == WallThermalModeSpec::adiabatic) {
+    const std::string why = "an adiabatic wall passes no heat; use mode: fixed or lumped";
+    std::vector<std::pair<std::string, std::string>> hints;
+    for (const std::string& key : kThermalKeys) hints.emplace_back(key, why);
+    return hints;
+  }
+  const std::string why = "only a lumped wall has a heat capacity";
+  return {{"specific_heat", why}, {"mass", why}, {"areal_density", why}};
+}
+
+/// A fixed wall's temperature: one value, or {time: [...], value: [...]} (linear
+/// between rows, held outside them).
+void read_fixed_temperature(const YamlValue& value, WallThermalSpec& thermal) {
+  if (value.node().IsMap()) {
+    const auto rows = read_table(value, {"time", Dimension::time, is_non_negative, "be 0 or more"},
+                                 {"value", Dimension::temperature, is_any, ""});
+    if (!rows) return;
+    thermal.time_s = rows->x;
+    thermal.temperature_K = rows->y;
+    return;
+  }
+  if (const auto temperature = value.quantity(Dimension::temperature)) {
+    thermal.time_s = {0.0};
+    thermal.temperature_K = {*temperature};
+  }
+}
+
+void read_lumped_capacity(const YamlSection& section, const WallSpec& wall, WallThermalSpec& thermal) {
+  thermal.specific_heat_J_per_kgK =
+      read_checked_quantity(section, "specific_heat", Dimension::specific_heat, Presence::required,
+                            is_positive, "be greater than 0")
+          .value_or(0.0);
+  const auto key = section.exactly_one_of({"mass", "areal_density"});
+  if (!key) return;
+  if (*key == "mass") {
+    thermal.mass_kg = read_checked_quantity(section, "mass", Dimension::mass, Presence::required,
+                                            is_positive, "be greater than 0")
+                          .value_or(0.0);
+    return;
+  }
+  if (wall.shape == WallShape::plane) {
+    section.get("areal_density")->error("a plane is unbounded and has no area: give the wall's 'mass'");
+    return;
+  }
+  thermal.areal_density_kg_per_m2 =
+      read_checked_quantity(section, "areal_density", Dimension::areal_density, Presence::required,
+                            is_positive, "be greater than 0")
+          .value_or(0.0);
+}
+
+/// The `thermal` block (DESIGN.md section 2, "Thermal walls"). Whether heat is on at
+/// all is checked here too, at the mode, so that the message points at the wall.
+void read_wall_thermal(const YamlValue& value, const ScenarioReferences& references, WallSpec& wall) {
+  const auto section = value.section();
+  if (!section) return;
+  WallThermalSpec& thermal = wall.thermal;
+  thermal.where = value.where();
+  const auto mode_value = section->require("mode");
+  const auto mode = mode_value ? mode_value->choice({"adiabatic", "fixed", "lumped"}) : std::nullopt;
+  if (!mode) {
+    section->allow_only(kThermalKeys);
+    return;
+  }
+  thermal.mode = *mode == "adiabatic" ? WallThermalModeSpec::adiabatic
+                 : *mode == "fixed"   ? WallThermalModeSpec::fixed
+                                      : WallThermalModeSpec::lumped;
+  section->allow_only(thermal_keys_for(thermal.mode), misplaced_thermal_keys(thermal.mode));
+  if (thermal.mode == WallThermalModeSpec::adiabatic) return;
+  // `heat: {enabled: false}` switches heat off for a whole run (thermal walls are then
+  // ignored); without any `heat` section a thermal wall is surely a forgotten section.
+  if (!references.heat_section) {
+    mode_value->error(fmt::format("a {} wall exchanges heat, but heat transfer is off: add a "
+                                  "top-level `heat:` section (e.g. `heat: {{}}`)",
+                                  *mode));
+  }
+
+  if (const auto temperature = section->require("temperature")) {
+    if (thermal.mode == WallThermalModeSpec::fixed) {
+      read_fixed_temperature(*temperature, thermal);
+    } else if (temperature->node().IsMap()) {
+      temperature->error("a lumped wall's temperature is its initial value: give one temperature "
+                         "(a table over time is for mode: fixed)");
+    } else if (const auto initial = temperature->quantity(Dimension::temperature)) {
+      thermal.time_s = {0.0};
+      thermal.temperature_K = {*initial};
+    }
+  }
+  thermal.conductivity_W_per_mK =
+      read_checked_quantity(*section, "conductivity", Dimension::thermal_conductivity,
+                            Presence::optional, is_positive, "be greater than 0");
+  if (const auto mix = section->get("conductivity_mix")) {
+    thermal.harmonic_mean = mix->choice({"wall", "harmonic_mean"}).value_or("wall") == "harmonic_mean";
+  }
+  if (thermal.mode == WallThermalModeSpec::lumped) read_lumped_capacity(*section, wall, thermal);
 }
 
 std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReferences& references) {
@@ -169,18 +323,20 @@ std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReference
   WallSpec wall;
   wall.where = item.where();
   const auto type_value = section->require("type");
-  const auto type = type_value ? type_value->choice({"plane", "disk", "cylinder"}) : std::nullopt;
+  const auto type =
+      type_value ? type_value->choice({"plane", "disk", "cylinder", "sieve"}) : std::nullopt;
   if (!type) {
     // Without a shape, still catch keys that no wall takes.
     std::vector<std::string> any_wall_key = keys_for(WallShape::cylinder);
-    any_wall_key.insert(any_wall_key.end(), {"point", "center", "normal"});
+    any_wall_key.insert(any_wall_key.end(), {"point", "center", "normal", "segments"});
     section->allow_only(any_wall_key);
     read_item_name(*section);
     return std::nullopt;
   }
-  wall.shape = *type == "plane"  ? WallShape::plane
-               : *type == "disk" ? WallShape::disk
-                                 : WallShape::cylinder;
+  wall.shape = *type == "plane"      ? WallShape::plane
+               : *type == "disk"     ? WallShape::disk
+               : *type == "cylinder" ? WallShape::cylinder
+                                     : WallShape::sieve;
   section->allow_only(keys_for(wall.shape), misplaced_keys(wall.shape));
   const auto name = read_item_name(*section);
   if (name) wall.name = *name;
@@ -190,6 +346,7 @@ std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReference
   }
   read_shape(*section, references, wall);
   if (const auto motion = section->get("motion")) read_motion(*motion, wall);
+  if (const auto thermal = section->get("thermal")) read_wall_thermal(*thermal, references, wall);
   if (!name) return std::nullopt;
   return wall;
 }

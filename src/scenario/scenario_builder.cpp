@@ -14,6 +14,8 @@
 #include "sim/stage_plan.hpp"
 #include "sim/stage_runner.hpp"
 #include "sim/time_step.hpp"
+#include "thermal/thermal_wall.hpp"
+#include "thermal/time_table.hpp"
 
 namespace regodem {
 
@@ -36,6 +38,16 @@ MaterialIndex material_index(const MaterialTable& table, const std::string& name
   return static_cast<MaterialIndex>(index);
 }
 
+ConductionLaw conduction_law(ConductionLawSpec law) {
+  switch (law) {
+    case ConductionLawSpec::force: return ConductionLaw::force;
+    case ConductionLawSpec::radius: return ConductionLaw::radius;
+    case ConductionLawSpec::area: return ConductionLaw::area;
+    case ConductionLawSpec::none: return ConductionLaw::none;
+  }
+  return ConductionLaw::force;
+}
+
 /// Pair properties: those given for the pair; for a wall material with none given,
 /// those of the particle material with itself (DESIGN.md section 3).
 void fill_pair_table(MaterialTable& table, const ScenarioSpec& spec, const std::vector<char>& particle_material) {
@@ -49,6 +61,8 @@ void fill_pair_table(MaterialTable& table, const ScenarioSpec& spec, const std::
     p.sliding_friction = in.sliding_friction;
     p.rolling_friction = in.rolling_friction;
     p.clamp_attractive_normal_force = in.clamp_attractive_normal_force;
+    p.conduction = conduction_law(in.conduction);
+    p.heat_transfer_coefficient_W_per_m2K = in.heat_transfer_coefficient_W_per_m2K;
     table.set_pair(a, b, p);
     given[a * n + b] = given[b * n + a] = 1;
   }
@@ -72,6 +86,45 @@ void fill_pair_table(MaterialTable& table, const ScenarioSpec& spec, const std::
   }
 }
 
+/// A property curve; a bad table (which the reader refuses already) names its key.
+TemperatureCurve curve_of(const TemperatureCurveSpec& spec) {
+  try {
+    if (spec.temperature_K.empty()) return TemperatureCurve(spec.constant);
+    return TemperatureCurve(spec.temperature_K, spec.value);
+  } catch (const InputError& problem) {
+    fail(spec.where, problem.what());
+  }
+}
+
+Material material_of(const MaterialSpec& m) {
+  Material material;
+  material.name = m.name;
+  material.density_kg_per_m3 = m.density_kg_per_m3;
+  material.shear_modulus_Pa = m.shear_modulus_Pa;
+  material.poisson_ratio = m.poisson_ratio;
+  if (m.conductivity_W_per_mK) material.conductivity_W_per_mK = curve_of(*m.conductivity_W_per_mK);
+  if (m.specific_heat_J_per_kgK) material.specific_heat_J_per_kgK = curve_of(*m.specific_heat_J_per_kgK);
+  material.real_shear_modulus_Pa = m.real_shear_modulus_Pa;
+  return material;
+}
+
+std::string curve_text(const TemperatureCurve& curve, const char* unit) {
+  if (curve.is_constant()) return fmt::format("{:.4g} {}", curve.at(0.0), unit);
+  return fmt::format("{:.4g} to {:.4g} {} over {:.4g} to {:.4g} K ({} rows)", curve.table_values().front(),
+                     curve.table_values().back(), unit, curve.table_temperatures_K().front(),
+                     curve.table_temperatures_K().back(), curve.table_values().size());
+}
+
+const char* shape_name(WallShape shape) {
+  switch (shape) {
+    case WallShape::plane: return "plane";
+    case WallShape::disk: return "disk";
+    case WallShape::cylinder: return "cylinder";
+    case WallShape::sieve: return "sieve";
+  }
+  return "wall";
+}
+
 bool parallel(const Vec3& a, const Vec3& b) { return norm(cross(normalized(a), normalized(b))) < 1e-9; }
 
 WallMotion wall_motion(const WallSpec& w) {
@@ -86,8 +139,8 @@ WallMotion wall_motion(const WallSpec& w) {
   // stays put); turning them any other way needs a mesh wall.
   const Vec3 axis = normalized(w.normal);
   if (!parallel(m.angular_velocity_rad_per_s, axis))
-    fail(w.where, fmt::format("wall '{}': an analytic {} may only rotate about its own axis/normal", w.name,
-                              w.shape == WallShape::plane ? "plane" : (w.shape == WallShape::disk ? "disk" : "cylinder")));
+    fail(w.where,
+         fmt::format("wall '{}': an analytic {} may only rotate about its own axis/normal", w.name, shape_name(w.shape)));
   if (w.shape != WallShape::plane) {
     const Vec3 offset = m.axis_point_m - w.point_m;
     if (norm(offset - axis * dot(offset, axis)) > 1e-9 * std::max(1.0, w.radius_m))
@@ -97,6 +150,84 @@ WallMotion wall_motion(const WallSpec& w) {
   }
   return m;
 }
+
+/// The wall's own conductivity: its thermal block's, else that of the material it
+/// names (a table at the wall's initial temperature), else none (the particles' own).
+std::optional<double> wall_conductivity(const ScenarioSpec& spec, const WallSpec& w, double initial_K) {
+  if (w.thermal.conductivity_W_per_mK) return w.thermal.conductivity_W_per_mK;
+  if (w.material.empty()) return std::nullopt;
+  for (const MaterialSpec& m : spec.materials) {
+    if (m.name != w.material || !m.conductivity_W_per_mK) continue;
+    return curve_of(*m.conductivity_W_per_mK).at(initial_K);
+  }
+  return std::nullopt;
+}
+
+/// The thermal body of one wall body (one sieve segment); area_m2 serves areal density.
+ThermalWall thermal_wall(const ScenarioSpec& spec, const WallSpec& w, double area_m2) {
+  const WallThermalSpec& t = w.thermal;
+  ThermalWall out;
+  switch (t.mode) {
+    case WallThermalModeSpec::adiabatic: out.mode = WallThermalMode::adiabatic; return out;
+    case WallThermalModeSpec::fixed: out.mode = WallThermalMode::fixed; break;
+    case WallThermalModeSpec::lumped: out.mode = WallThermalMode::lumped; break;
+  }
+  try {
+    out.prescribed_temperature_K = TimeTable(t.time_s, t.temperature_K);
+  } catch (const InputError& problem) {
+    fail(t.where, problem.what());
+  }
+  out.temperature_K = out.prescribed_temperature_K.at(0.0);
+  if (out.mode == WallThermalMode::lumped) {
+    out.prescribed_temperature_K = TimeTable();  // only the initial value was a table row
+    const double mass_kg = t.mass_kg > 0.0 ? t.mass_kg : t.areal_density_kg_per_m2 * area_m2;
+    if (!(mass_kg > 0.0))
+      fail(t.where, fmt::format("wall '{}': a lumped wall needs a mass ('mass', or 'areal_density' of a wall with an "
+                                "area)",
+                                w.name));
+    out.heat_capacity_J_per_K = mass_kg * t.specific_heat_J_per_kgK;
+  }
+  out.conductivity_W_per_mK = wall_conductivity(spec, w, out.temperature_K);
+  out.mix = t.harmonic_mean ? WallConductivityMix::harmonic_mean : WallConductivityMix::wall;
+  return out;
+}
+
+/// One line per wall on its thermal side (heat on only); a sieve's segments differ at
+/// most in heat capacity (the capped one has its bottom too), from t to largest_capacity.
+std::string describe_thermal_wall(const WallSpec& w, const ThermalWall& t, int segments,
+                                  double largest_capacity_J_per_K) {
+  const std::string who = segments > 1 ? fmt::format("sieve '{}' ({} segments '{}[1]' at the top to '{}[{}]' at the "
+                                                     "bottom, each)",
+                                                     w.name, segments, w.name, w.name, segments)
+                                       : fmt::format("wall '{}'", w.name);
+  const std::string k = t.conductivity_W_per_mK ? fmt::format("{:.4g} W/(m K)", *t.conductivity_W_per_mK)
+                                                : std::string("the particles' own");
+  const std::string mix = t.mix == WallConductivityMix::harmonic_mean ? ", harmonic mean with the particle's" : "";
+  switch (t.mode) {
+    case WallThermalMode::adiabatic: return fmt::format("{}: adiabatic", who);
+    case WallThermalMode::fixed: {
+      const TimeTable& table = t.prescribed_temperature_K;
+      const std::string temperature =
+          table.values().size() == 1
+              ? fmt::format("{:.5g} K", table.values().front())
+              : fmt::format("{:.5g} K to {:.5g} K over {:.4g} to {:.4g} s ({} rows)", table.values().front(),
+                            table.values().back(), table.times_s().front(), table.times_s().back(),
+                            table.values().size());
+      return fmt::format("{}: fixed at {}; conductivity {}{}", who, temperature, k, mix);
+    }
+    case WallThermalMode::lumped: {
+      const std::string capacity =
+          largest_capacity_J_per_K > t.heat_capacity_J_per_K
+              ? fmt::format("{:.4g} J/K ({:.4g} J/K with the bottom)", t.heat_capacity_J_per_K, largest_capacity_J_per_K)
+              : fmt::format("{:.4g} J/K", t.heat_capacity_J_per_K);
+      return fmt::format("{}: lumped, heat capacity m C = {}, initially {:.5g} K; conductivity {}{}", who, capacity,
+                         t.temperature_K, k, mix);
+    }
+  }
+  return who;
+}
+
+double disk_area(double r) { return std::numbers::pi * r * r; }
 
 InsertionRegion insertion_region(const RegionSpec& r) {
   InsertionRegion out;
@@ -120,6 +251,26 @@ std::size_t stage_index(const ScenarioSpec& spec, const std::string& name, const
   fail(where, fmt::format("no stage is named '{}'", name));
 }
 
+HeatStepping heat_stepping(ThermalStepping method) {
+  switch (method) {
+    case ThermalStepping::coupled: return HeatStepping::coupled;
+    case ThermalStepping::static_explicit: return HeatStepping::static_explicit;
+    case ThermalStepping::static_backward_euler: return HeatStepping::static_backward_euler;
+    case ThermalStepping::static_crank_nicolson: return HeatStepping::static_crank_nicolson;
+  }
+  return HeatStepping::coupled;
+}
+
+const char* heat_method_name(HeatStepping method) {
+  switch (method) {
+    case HeatStepping::coupled: return "coupled stepping";
+    case HeatStepping::static_explicit: return "explicit Euler";
+    case HeatStepping::static_backward_euler: return "backward Euler";
+    case HeatStepping::static_crank_nicolson: return "Crank-Nicolson";
+  }
+  return "coupled stepping";
+}
+
 double sphere_volume(double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; }
 
 Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, const MaterialTable& materials,
@@ -134,11 +285,19 @@ Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, con
   ins.tag = static_cast<RegionTag>(found - tags.begin());
   ins.stage = stage_index(spec, in.stage, in.where);
   ins.velocity_m_per_s = in.initial_velocity_m_per_s;
+  if (in.temperature) {
+    ins.temperature.value_K = in.temperature->value_K;
+    ins.temperature.gradient_K_per_m = in.temperature->gradient_K_per_m;
+    ins.temperature.reference_point_m = in.temperature->reference_point_m;
+  }
 
   if (!in.from_file.empty()) {
     std::filesystem::path path(in.from_file);
     if (path.is_relative()) path = std::filesystem::path(spec.file).parent_path() / path;
-    for (const ParticleRecord& r : read_particle_csv(path.string())) {
+    const std::vector<ParticleRecord> records = read_particle_csv(path.string());
+    std::size_t without_temperature = 0;
+    std::size_t first_without = 0;
+    for (const ParticleRecord& r : records) {
       NewParticle p;
       p.position_m = r.position_m;
       p.velocity_m_per_s = r.velocity_m_per_s;
@@ -146,8 +305,22 @@ Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, con
       p.density_kg_per_m3 = ins.density_kg_per_m3;
       p.material = ins.material;
       p.region = ins.tag;
+      // The file's temperature column wins; else the insertion's field at the particle.
+      if (r.has_temperature) {
+        p.temperature_K = r.temperature_K;
+      } else {
+        if (!in.temperature && without_temperature++ == 0) first_without = ins.from_file.size();
+        p.temperature_K = ins.temperature.at(p.position_m);
+      }
+      if (p.temperature_K < 0.0)
+        fail(in.where, fmt::format("particle {} of {} would start at {:.4g} K, below absolute zero",
+                                   ins.from_file.size() + 1, in.from_file, p.temperature_K));
       ins.from_file.push_back(p);
     }
+    if (spec.heat.enabled && without_temperature > 0)
+      fail(in.where, fmt::format("heat is on, but {} gives no temperature for {} of its {} particles (the first is "
+                                 "particle {}): add a `temperature` column or the insertion's `temperature`",
+                                 in.from_file, without_temperature, records.size(), first_without + 1));
     ins.target_count = ins.from_file.size();
     return ins;
   }
@@ -193,8 +366,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   std::vector<std::string>& lines = impl.description;
 
   MaterialTable materials;
-  for (const MaterialSpec& m : spec.materials)
-    materials.add({m.name, m.density_kg_per_m3, m.shear_modulus_Pa, m.poisson_ratio});
+  for (const MaterialSpec& m : spec.materials) materials.add(material_of(m));
 
   // Insertions first: they say which materials are particles and which sizes occur.
   std::vector<std::string> tags;
@@ -211,32 +383,95 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     };
     for (const SizeClass& c : ins.sizes) consider(c.radius_m);
     for (const NewParticle& p : ins.from_file) consider(p.radius_m);
+    std::string temperature;
+    if (in.temperature) {
+      const InitialTemperature& field = ins.temperature;
+      temperature = norm2(field.gradient_K_per_m) == 0.0
+                        ? fmt::format(", at {:.5g} K", field.value_K)
+                        : fmt::format(", at {:.5g} K + [{:.4g}, {:.4g}, {:.4g}] K/m . (x - [{:.4g}, {:.4g}, {:.4g}] m)",
+                                      field.value_K, field.gradient_K_per_m.x, field.gradient_K_per_m.y,
+                                      field.gradient_K_per_m.z, field.reference_point_m.x,
+                                      field.reference_point_m.y, field.reference_point_m.z);
+    }
+    if (!in.from_file.empty() && in.temperature) temperature += " where the file gives none";
     if (ins.from_file.empty())
-      lines.push_back(fmt::format("insertion '{}': {} particles of '{}' ({} size class{}){}, during stage '{}'",
+      lines.push_back(fmt::format("insertion '{}': {} particles of '{}' ({} size class{}){}, during stage '{}'{}",
                                   ins.name, ins.target_count, m.name, ins.sizes.size(), ins.sizes.size() == 1 ? "" : "es",
                                   ins.rate_per_s > 0 ? fmt::format(" at {:.4g} /s", ins.rate_per_s) : " all at once",
-                                  spec.stages[ins.stage].name));
+                                  spec.stages[ins.stage].name, temperature));
     else
-      lines.push_back(fmt::format("insertion '{}': {} particles of '{}' from {}", ins.name, ins.target_count, m.name,
-                                  in.from_file));
+      lines.push_back(fmt::format("insertion '{}': {} particles of '{}' from {}{}", ins.name, ins.target_count, m.name,
+                                  in.from_file, temperature));
     impl.plan.insertions.push_back(std::move(ins));
   }
   if (impl.plan.insertions.empty()) fail(SourceLocation{spec.file, 0, 0, "insertions"}, "no insertions: there would be no particles");
   fill_pair_table(materials, spec, particle_material);
 
+  if (spec.heat.enabled) {
+    lines.push_back(fmt::format("heat: on, time-scale factor S = {:.4g}, friction heating {}", spec.heat.time_scale_factor,
+                                spec.heat.friction_heating
+                                    ? fmt::format("on ({:.3g} of it to the particle)", spec.heat.friction_partition)
+                                    : std::string("off")));
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+      if (!particle_material[i]) continue;
+      const Material& m = materials[static_cast<MaterialIndex>(i)];
+      lines.push_back(fmt::format("material '{}': conductivity {}, specific heat {}{}", m.name,
+                                  curve_text(m.conductivity_W_per_mK, "W/(m K)"),
+                                  curve_text(m.specific_heat_J_per_kgK, "J/(kg K)"),
+                                  m.real_shear_modulus_Pa > 0.0
+                                      ? fmt::format(", contact radius from the real shear modulus {:.4g} Pa",
+                                                    m.real_shear_modulus_Pa)
+                                      : std::string()));
+    }
+  } else {
+    lines.push_back("heat: off");
+  }
+
   WallSet walls;
+  std::vector<ThermalWall> wall_thermal;
   for (const WallSpec& w : spec.walls) {
     const MaterialIndex material =
         w.material.empty() ? MaterialIndex{0} : material_index(materials, w.material, w.where);
-    const std::uint32_t body = walls.add_body(w.name, wall_motion(w));
+    const WallMotion motion = wall_motion(w);
+    if (w.shape == WallShape::sieve) {
+      // Segment k (1 at the top, N at the bottom) spans [N - k, N - k + 1] segment
+      // lengths from the base; edges only at the sieve's own ends.
+      const int n = w.segments;
+      const Vec3 axis = normalized(w.normal);
+      ThermalWall first;
+      for (int k = 1; k <= n; ++k) {
+        const std::uint32_t body = walls.add_body(fmt::format("{}[{}]", w.name, k), motion);
+        const Vec3 base = w.point_m + axis * (w.length_m * static_cast<double>(n - k));
+        const bool bottom = k == n;
+        walls.add_sieve_segment(body, base, axis, w.radius_m, w.length_m, bottom, k == 1, bottom && w.cap_bottom,
+                                material);
+        const double area = 2.0 * std::numbers::pi * w.radius_m * w.length_m +
+                            (bottom && w.cap_bottom ? disk_area(w.radius_m) : 0.0);
+        wall_thermal.push_back(thermal_wall(spec, w, area));
+        if (k == 1) first = wall_thermal.back();
+      }
+      if (spec.heat.enabled)
+        lines.push_back(describe_thermal_wall(w, first, n, wall_thermal.back().heat_capacity_J_per_K));
+      continue;
+    }
+    const std::uint32_t body = walls.add_body(w.name, motion);
+    double area = 0.0;
     switch (w.shape) {
       case WallShape::plane: walls.add_plane(body, w.point_m, w.normal, material); break;
-      case WallShape::disk: walls.add_disk(body, w.point_m, w.normal, w.radius_m, material); break;
+      case WallShape::disk:
+        walls.add_disk(body, w.point_m, w.normal, w.radius_m, material);
+        area = disk_area(w.radius_m);
+        break;
       case WallShape::cylinder:
         walls.add_cylinder(body, w.point_m, w.normal, w.radius_m, w.length_m, w.side != CylinderSide::outside,
                            w.side != CylinderSide::inside, w.cap_bottom, w.cap_top, material);
+        area = 2.0 * std::numbers::pi * w.radius_m * w.length_m +
+               disk_area(w.radius_m) * ((w.cap_bottom ? 1.0 : 0.0) + (w.cap_top ? 1.0 : 0.0));
         break;
+      case WallShape::sieve: break;  // expanded above
     }
+    wall_thermal.push_back(thermal_wall(spec, w, area));
+    if (spec.heat.enabled) lines.push_back(describe_thermal_wall(w, wall_thermal.back(), 1, 0.0));
   }
   lines.push_back(fmt::format("walls: {} ({} analytic primitives)", walls.bodies.size(), walls.primitives.size()));
 
@@ -264,7 +499,12 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   settings.neighbor_skin_m = spec.neighbor_skin_m > 0.0 ? spec.neighbor_skin_m : 0.2 * min_radius;
   settings.min_particle_radius_m = min_radius;
   settings.threads = threads;
-  impl.simulation = std::make_unique<Simulation>(std::move(materials), std::move(walls), settings);
+  settings.heat.enabled = spec.heat.enabled;
+  settings.heat.time_scale_factor = spec.heat.time_scale_factor;
+  settings.heat.friction_heating = spec.heat.friction_heating;
+  settings.heat.friction_partition = spec.heat.friction_partition;
+  impl.simulation =
+      std::make_unique<Simulation>(std::move(materials), std::move(walls), settings, std::move(wall_thermal));
 
   for (const StageSpec& st : spec.stages) {
     Stage stage;
@@ -285,11 +525,22 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
       po.rolling_friction = o.rolling_friction;
       stage.overrides.push_back(po);
     }
-    lines.push_back(stage.until_settled
-                        ? fmt::format("stage '{}': until settled (kinetic energy per particle < {:.3g} J), at most {:.4g} s",
-                                      stage.name, stage.settled_kinetic_energy_J, stage.max_duration_s)
-                        : fmt::format("stage '{}': {:.4g} s ({:.0f} steps)", stage.name, stage.duration_s,
-                                      std::round(stage.duration_s / dt)));
+    stage.heat_stepping = heat_stepping(st.heat_stepping);
+    stage.thermal_time_step_s = st.thermal_time_step_s;
+    stage.stability_fraction = st.stability_fraction;
+    if (stage.freezes_mechanics())
+      lines.push_back(fmt::format("stage '{}': {:.4g} s, static bed (mechanics frozen), heat by {}, thermal step {}",
+                                  stage.name, stage.duration_s, heat_method_name(stage.heat_stepping),
+                                  stage.thermal_time_step_s > 0.0
+                                      ? fmt::format("{:.4g} s", stage.thermal_time_step_s)
+                                      : fmt::format("{:.3g} x the explicit stability limit", stage.stability_fraction)));
+    else
+      lines.push_back(stage.until_settled
+                          ? fmt::format("stage '{}': until settled (kinetic energy per particle < {:.3g} J), at most "
+                                        "{:.4g} s",
+                                        stage.name, stage.settled_kinetic_energy_J, stage.max_duration_s)
+                          : fmt::format("stage '{}': {:.4g} s ({:.0f} steps)", stage.name, stage.duration_s,
+                                        std::round(stage.duration_s / dt)));
     impl.plan.stages.push_back(std::move(stage));
   }
   impl.plan.sample_interval_s = spec.output.interval_s;
@@ -303,6 +554,7 @@ RunOutcome PreparedRun::run(RunObserver& observer, const std::atomic<bool>& stop
 
 std::vector<std::string> PreparedRun::describe() const { return impl_->description; }
 const Simulation& PreparedRun::simulation() const { return *impl_->simulation; }
+const StagePlan& PreparedRun::plan() const { return impl_->plan; }
 double PreparedRun::time_step_s() const { return impl_->simulation->time_step_s(); }
 int PreparedRun::threads() const { return impl_->simulation->threads(); }
 

@@ -33,6 +33,8 @@ class PreparedRun {
   std::vector<std::string> describe() const;
 
   const Simulation& simulation() const;
+  /// Stages and insertions as the engine will run them.
+  const StagePlan& plan() const;
   double time_step_s() const;
   int threads() const;
 

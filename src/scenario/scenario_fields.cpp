@@ -13,6 +13,63 @@ namespace regodem {
 
 bool is_positive(double value) { return value > 0.0; }
 bool is_non_negative(double value) { return value >= 0.0; }
+bool is_any(double) { return true; }
+
+std::optional<std::vector<double>> read_quantity_list(const YamlValue& value, Dimension dimension,
+                                                      bool (*valid)(double), std::string_view rule) {
+  if (!value.node().IsSequence() || value.node().size() == 0) {
+    value.error(fmt::format("expected a list of one or more values, each {} (e.g. [{}])",
+                            dimension_description(dimension), dimension_example(dimension)));
+    return std::nullopt;
+  }
+  const auto items = value.items();
+  if (!items) return std::nullopt;
+  std::vector<double> result;
+  bool complete = true;
+  for (const YamlValue& item : *items) {
+    const auto quantity = item.quantity(dimension);
+    if (quantity && !valid(*quantity)) {
+      item.error(fmt::format("must {}, got '{}'", rule, item.node().Scalar()));
+    }
+    if (!quantity || !valid(*quantity)) {
+      complete = false;
+      continue;
+    }
+    result.push_back(*quantity);
+  }
+  if (!complete) return std::nullopt;
+  return result;
+}
+
+std::optional<TableRows> read_table(const YamlValue& value, const TableColumn& x,
+                                    const TableColumn& y) {
+  const auto section = value.section();
+  if (!section) return std::nullopt;
+  section->allow_only({x.key, y.key});
+  const auto x_value = section->require(x.key);
+  const auto y_value = section->require(y.key);
+  const auto xs = x_value ? read_quantity_list(*x_value, x.dimension, x.valid, x.rule) : std::nullopt;
+  const auto ys = y_value ? read_quantity_list(*y_value, y.dimension, y.valid, y.rule) : std::nullopt;
+  if (!xs || !ys) return std::nullopt;
+  bool increasing = true;
+  for (std::size_t k = 1; k < xs->size(); ++k) {
+    if ((*xs)[k] > (*xs)[k - 1]) continue;
+    // Located at the offending entry, quoted as written.
+    const YAML::Node entry = x_value->node()[k];
+    const YAML::Node previous = x_value->node()[k - 1];
+    x_value->child(entry, entry.Mark(), fmt::format("{}[{}]", x_value->path(), k))
+        .error(fmt::format("the {}s of a table must increase from row to row: '{}' follows '{}'", x.key,
+                           entry.Scalar(), previous.Scalar()));
+    increasing = false;
+  }
+  if (xs->size() != ys->size()) {
+    y_value->error(fmt::format("has {} value{} but '{}' has {}: give one value per row", ys->size(),
+                               ys->size() == 1 ? "" : "s", x.key, xs->size()));
+    return std::nullopt;
+  }
+  if (!increasing) return std::nullopt;
+  return TableRows{*xs, *ys};
+}
 
 std::optional<double> read_checked_quantity(const YamlSection& section, std::string_view key,
                                             Dimension dimension, Presence presence,

@@ -22,6 +22,25 @@ std::optional<double> read_checked_quantity(const YamlSection& section, std::str
 
 bool is_positive(double value);
 bool is_non_negative(double value);
+bool is_any(double value);
+
+/// A non-empty list of quantities, each checked with `valid` ("must `rule`").
+std::optional<std::vector<double>> read_quantity_list(const YamlValue& value, Dimension dimension,
+                                                      bool (*valid)(double), std::string_view rule);
+
+/// Rows of a table written as two lists of equal length under `x_key` and `y_key`,
+/// e.g. {temperature: [100 K, 350 K], value: [300, 900 J/(kg K)]}; x strictly increases.
+struct TableColumn {
+  std::string key;
+  Dimension dimension;
+  bool (*valid)(double);
+  std::string_view rule;
+};
+struct TableRows {
+  std::vector<double> x, y;
+};
+std::optional<TableRows> read_table(const YamlValue& value, const TableColumn& x,
+                                    const TableColumn& y);
 
 /// A length given as `radius_key` or as `diameter_key` (exactly one when required),
 /// greater than 0; returns the radius.

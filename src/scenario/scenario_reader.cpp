@@ -25,7 +25,7 @@ const std::vector<std::string> kTopLevelKeys{
     "name",          "description", "seed",   "gravity",    "domain",
     "time_step",     "rayleigh_fraction",     "max_rayleigh_fraction",
     "neighbor_skin", "materials",   "interactions",         "walls",
-    "insertions",    "stages",      "output"};
+    "insertions",    "stages",      "output",               "heat"};
 
 /// `auto` (returned as 0, the builder's cue to choose) or a quantity greater than 0.
 double read_auto_or_positive(const YamlSection& root, std::string_view key, Dimension dimension) {
@@ -113,16 +113,24 @@ ScenarioSpec read_tree(const YAML::Node& tree, ScenarioReadContext& context) {
   read_globals(*root, spec);
   references.domain = read_domain(*root);
   if (references.domain) spec.domain = *references.domain;
+  // Heat first: walls, stages and insertions ask of it whether heat is on.
+  read_heat(*root, references, spec);
   read_materials(*root, spec);
   for (const MaterialSpec& material : spec.materials) {
     references.material_names.push_back(material.name);
   }
   read_stages(*root, references, spec);
-  for (const StageSpec& stage : spec.stages) references.stage_names.push_back(stage.name);
+  for (const StageSpec& stage : spec.stages) {
+    references.stage_names.push_back(stage.name);
+    if (stage.heat_stepping != ThermalStepping::coupled) {
+      references.static_stage_names.push_back(stage.name);
+    }
+  }
   read_interactions(*root, references, spec);
   read_walls(*root, references, spec);
   read_insertions(*root, references, spec);
   read_output(*root, spec);
+  check_heat_requirements(spec, references, context.diagnostics);
   return spec;
 }
 

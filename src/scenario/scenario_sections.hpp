@@ -15,8 +15,11 @@ namespace regodem {
 struct ScenarioReferences {
   std::vector<std::string> material_names;
   std::vector<std::string> stage_names;
+  std::vector<std::string> static_stage_names;  // stages that freeze the mechanics
   std::optional<DomainSpec> domain;  // absent when the domain is missing or wrong
   std::string base_directory;        // relative paths in the file are relative to this
+  bool heat_section = false;         // the file has a top-level `heat` section
+  bool heat_enabled = false;         // ... and it does not say `enabled: false`
 };
 
 void read_materials(const YamlSection& root, ScenarioSpec& spec);                 // read_materials.cpp
@@ -25,6 +28,12 @@ void read_interactions(const YamlSection& root, const ScenarioReferences& refere
 void read_stages(const YamlSection& root, const ScenarioReferences& references,
                  ScenarioSpec& spec);                                               // read_stages.cpp
 void read_output(const YamlSection& root, ScenarioSpec& spec);                    // read_stages.cpp
+void read_heat(const YamlSection& root, ScenarioReferences& references,
+               ScenarioSpec& spec);                                                 // read_heat.cpp
+/// Checks that span sections once all are read: thermal properties of the particle
+/// materials and initial temperatures when heat is on, no insertion in a static stage.
+void check_heat_requirements(const ScenarioSpec& spec, const ScenarioReferences& references,
+                             ScenarioDiagnostics& diagnostics);                     // read_heat.cpp
 void read_walls(const YamlSection& root, const ScenarioReferences& references,
                 ScenarioSpec& spec);                                                // read_walls.cpp
 void read_insertions(const YamlSection& root, const ScenarioReferences& references,

@@ -23,13 +23,27 @@ struct SourceLocation {
   std::string describe() const;  // "file:line:column: key"
 };
 
+/// A property that is a constant or a table over temperature (rows T, value).
+struct TemperatureCurveSpec {
+  double constant = 0.0;                  // used when the table is empty
+  std::vector<double> temperature_K;      // table rows (strictly increasing)
+  std::vector<double> value;
+  SourceLocation where;
+};
+
 struct MaterialSpec {
   std::string name;
   double density_kg_per_m3 = 0.0;
   double shear_modulus_Pa = 0.0;
   double poisson_ratio = 0.0;
+  // Thermal properties; both must be given when heat is on. W/(m K) and J/(kg K).
+  std::optional<TemperatureCurveSpec> conductivity_W_per_mK;
+  std::optional<TemperatureCurveSpec> specific_heat_J_per_kgK;
+  double real_shear_modulus_Pa = 0.0;  // 0: none (conduction uses shear_modulus_Pa)
   SourceLocation where;
 };
+
+enum class ConductionLawSpec { force, radius, area, none };
 
 /// Contact properties of a pair of materials ("interactions" section).
 struct InteractionSpec {
@@ -38,6 +52,8 @@ struct InteractionSpec {
   double sliding_friction = 0.5;
   double rolling_friction = 0.0;
   bool clamp_attractive_normal_force = false;
+  ConductionLawSpec conduction = ConductionLawSpec::force;
+  double heat_transfer_coefficient_W_per_m2K = 0.0;  // area law only (required there)
   SourceLocation where;
 };
 
@@ -52,8 +68,25 @@ struct MotionSpec {
   double stop_s = std::numeric_limits<double>::infinity();
 };
 
-enum class WallShape { plane, disk, cylinder };
+enum class WallShape { plane, disk, cylinder, sieve };
 enum class CylinderSide { inside, outside, both };
+
+enum class WallThermalModeSpec { adiabatic, fixed, lumped };
+
+/// The `thermal` block of a wall (DESIGN.md section 2, "Thermal walls").
+struct WallThermalSpec {
+  WallThermalModeSpec mode = WallThermalModeSpec::adiabatic;
+  // fixed: the temperature, constant (one row at t = 0) or a table over time;
+  // lumped: the initial temperature (one row).
+  std::vector<double> time_s;
+  std::vector<double> temperature_K;
+  std::optional<double> conductivity_W_per_mK;  // none: the particles' own
+  bool harmonic_mean = false;                   // k_c = harmonic mean of wall and particle
+  double specific_heat_J_per_kgK = 0.0;         // lumped
+  double mass_kg = 0.0;                         // lumped: mass, or
+  double areal_density_kg_per_m2 = 0.0;         //   areal density x the wall's area (per segment)
+  SourceLocation where;
+};
 
 struct WallSpec {
   std::string name;
@@ -62,13 +95,20 @@ struct WallSpec {
   // plane: point + normal (normal points towards the particles)
   // disk: point = centre, normal = axis, radius
   // cylinder: point = centre of the bottom end, normal = axis (bottom -> top), radius, length
+  // sieve: as a cylinder, from the bottom of its lowest segment; length of one segment
   Vec3 point_m;
   Vec3 normal{0.0, 0.0, 1.0};
   double radius_m = 0.0;
   double length_m = 0.0;
-  CylinderSide side = CylinderSide::inside;  // cylinder only
-  bool cap_bottom = false;                   // cylinder only
+  CylinderSide side = CylinderSide::inside;  // cylinder (a sieve: always both)
+  bool cap_bottom = false;                   // cylinder and sieve
   bool cap_top = false;                      // cylinder only
+  // sieve: a segmented cylinder, contact from both sides, `segments` pieces of length
+  // length_m each stacked along the axis from point_m, numbered from the top (1) down;
+  // cap_bottom closes the lowest one (the paper's segment 10). Each segment is its own
+  // wall body "name[k]" with its own temperature.
+  int segments = 1;
+  WallThermalSpec thermal;
   MotionSpec motion;
   SourceLocation where;
 };
@@ -86,6 +126,13 @@ struct RegionSpec {
   double radius_m = 0.0;
   double inner_radius_m = 0.0;
   SourceLocation where;
+};
+
+/// Initial particle temperature: value + gradient . (x - reference_point).
+struct InitialTemperatureSpec {
+  double value_K = 0.0;
+  Vec3 gradient_K_per_m;
+  Vec3 reference_point_m;
 };
 
 struct SizeClassSpec {
@@ -110,6 +157,9 @@ struct InsertionSpec {
   Vec3 initial_velocity_m_per_s;
   std::string stage;                // stage during which it inserts; empty = the first stage
   std::string from_file;            // CSV of x,y,z,radius[,vx,vy,vz][,temperature]; region unused
+  // Initial temperature; a CSV temperature column, where present, wins. Required when
+  // heat is on (unless the CSV gives every temperature).
+  std::optional<InitialTemperatureSpec> temperature;
   SourceLocation where;
 };
 
@@ -122,6 +172,12 @@ struct OverrideSpec {
 
 enum class StageEnd { time, settled };
 
+/// How a stage moves heat. coupled: with the mechanics, every step. The others freeze the
+/// mechanics (particles do not move) and advance temperatures alone on the contact
+/// network taken at the stage start: explicit at a fraction of the stability limit, or
+/// implicit (backward Euler, Crank-Nicolson).
+enum class ThermalStepping { coupled, static_explicit, static_backward_euler, static_crank_nicolson };
+
 struct StageSpec {
   std::string name;
   StageEnd end = StageEnd::time;
@@ -133,6 +189,18 @@ struct StageSpec {
   double min_duration_s = 0.0;
   double max_duration_s = std::numeric_limits<double>::infinity();
   std::vector<OverrideSpec> overrides;
+  ThermalStepping heat_stepping = ThermalStepping::coupled;
+  double thermal_time_step_s = 0.0;   // static modes; 0 = stability_fraction x the explicit limit
+  double stability_fraction = 0.5;    // static explicit (and the default implicit step)
+  SourceLocation where;
+};
+
+/// The top-level `heat` section (DESIGN.md section 2, "Conduction", "Thermal stepping").
+struct HeatSpec {
+  bool enabled = false;               // true when the section is present, unless `enabled: false`
+  double time_scale_factor = 1.0;     // S: every conductance is multiplied by it
+  bool friction_heating = false;
+  double friction_partition = 0.5;    // share of friction heat to the first body (a particle)
   SourceLocation where;
 };
 
@@ -163,6 +231,7 @@ struct ScenarioSpec {
   std::vector<WallSpec> walls;
   std::vector<InsertionSpec> insertions;
   std::vector<StageSpec> stages;
+  HeatSpec heat;
   OutputSpec output;
 };
 

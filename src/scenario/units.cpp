@@ -143,6 +143,12 @@ constexpr std::array kDimensions{
                   "a thermal conductivity", "14.76 W/(m K)"},
     DimensionInfo{Dimension::specific_heat, UnitPowers{2, 0, -2, -1, 0}, "a specific heat",
                   "800 J/(kg K)"},
+    DimensionInfo{Dimension::heat_transfer_coefficient, UnitPowers{0, 1, -3, -1, 0},
+                  "a heat transfer coefficient", "5e4 W/(m^2 K)"},
+    DimensionInfo{Dimension::areal_density, UnitPowers{-2, 1, 0, 0, 0}, "an areal density",
+                  "7.8 kg/m^2"},
+    DimensionInfo{Dimension::temperature_gradient, UnitPowers{-1, 0, 0, 1, 0},
+                  "a temperature gradient", "-50 K/m"},
 };
 
 const DimensionInfo& info_of(Dimension dimension) {

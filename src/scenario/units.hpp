@@ -28,6 +28,9 @@ enum class Dimension {
   power,
   thermal_conductivity,  // W/(m K)
   specific_heat,         // J/(kg K)
+  heat_transfer_coefficient,  // W/(m^2 K)
+  areal_density,              // kg/m^2
+  temperature_gradient,       // K/m
 };
 
 /// "a length", "an angular velocity": for error messages.

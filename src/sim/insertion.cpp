@@ -149,6 +149,7 @@ InsertionReport insert_due_particles(Simulation& sim, Insertion& ins, Rng& rng) 
       p.density_kg_per_m3 = ins.density_kg_per_m3;
       p.material = ins.material;
       p.region = ins.tag;
+      p.temperature_K = ins.temperature.at(x);
       sim.add_particle(p);
       grid.add(x, r);
       placed = true;

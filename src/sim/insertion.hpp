@@ -18,6 +18,14 @@ struct SizeClass {
   double number_fraction = 1.0;  // share of the particle count
 };
 
+/// Initial temperature of inserted particles: value + gradient . (x - reference_point).
+struct InitialTemperature {
+  double value_K = 0.0;
+  Vec3 gradient_K_per_m;
+  Vec3 reference_point_m;
+  double at(const Vec3& x_m) const { return value_K + dot(gradient_K_per_m, x_m - reference_point_m); }
+};
+
 struct Insertion {
   std::string name;
   InsertionRegion region;
@@ -29,6 +37,7 @@ struct Insertion {
   double rate_per_s = 0.0;   // 0: all at the first attempt
   double interval_s = 0.0;   // between attempts when rate_per_s > 0
   Vec3 velocity_m_per_s;
+  InitialTemperature temperature;
   std::size_t stage = 0;
   std::vector<NewParticle> from_file;  // when not empty: these particles, placed as given
 

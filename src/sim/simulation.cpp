@@ -41,23 +41,41 @@ struct HalfKick {
 
 }  // namespace
 
-Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const SimulationSettings& settings)
+Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const SimulationSettings& settings,
+                       std::vector<ThermalWall> wall_thermal_in)
     : materials(std::move(materials_in)),
       walls(std::move(walls_in)),
+      wall_thermal(std::move(wall_thermal_in)),
       settings_(settings),
-      contact_parameters_(materials) {
+      contact_parameters_(materials),
+      conduction_parameters_(materials, settings.heat.time_scale_factor) {
+  const std::size_t n_bodies = walls.bodies.size();
+  if (wall_thermal.empty()) wall_thermal.resize(n_bodies);
+  if (wall_thermal.size() != n_bodies)
+    throw InputError(fmt::format("{} wall thermal descriptions for {} walls", wall_thermal.size(), n_bodies));
   spills_.resize(settings_.threads);
-  wall_force_by_thread_.assign(settings_.threads, std::vector<Vec3>(walls.bodies.size()));
-  wall_torque_by_thread_.assign(settings_.threads, std::vector<Vec3>(walls.bodies.size()));
+  wall_force_by_thread_.assign(settings_.threads, std::vector<Vec3>(n_bodies));
+  wall_torque_by_thread_.assign(settings_.threads, std::vector<Vec3>(n_bodies));
+  wall_conduction_by_thread_.assign(settings_.threads, std::vector<double>(n_bodies));
+  wall_friction_by_thread_.assign(settings_.threads, std::vector<double>(n_bodies));
+  friction_power_by_thread_.assign(settings_.threads, 0.0);
+  wall_friction_power_W_.assign(n_bodies, 0.0);
+  for (ThermalWall& w : wall_thermal) {
+    if (w.mode == WallThermalMode::fixed) w.temperature_K = w.prescribed_temperature_K.at(0.0);
+    if (w.mode == WallThermalMode::lumped) ledger_.reference_energy_J += w.heat_capacity_J_per_K * w.temperature_K;
+  }
 }
 
 void Simulation::add_particle(const NewParticle& p) {
-  particles.add(p);
+  const std::size_t i = particles.add(p);
+  particles.conductivity_W_per_mK[i] = materials[p.material].conductivity_W_per_mK.at(p.temperature_K);
+  if (heat_enabled()) ledger_.reference_energy_J += particle_thermal_energy_J(i);
   forces_current_ = false;
 }
 
 void Simulation::refresh_contact_parameters() {
   contact_parameters_ = ContactParameterTable(materials);
+  conduction_parameters_ = ConductionParameterTable(materials, settings_.heat.time_scale_factor);
   forces_current_ = false;
 }
 
@@ -94,6 +112,7 @@ void Simulation::step() {
     rebuild_neighbors();
   compute_forces(settings_.time_step_s);
   second_half_kick();
+  if (heat_enabled()) update_temperatures(settings_.time_step_s);
 }
 
 void Simulation::advance(std::uint64_t steps) {
@@ -167,6 +186,15 @@ void Simulation::report_blow_up(const std::string& what, double at_time_s, std::
 }
 
 void Simulation::compute_forces(double slip_time_s) {
+  // Heat off costs nothing: the pair loop is compiled twice.
+  if (heat_enabled())
+    compute_forces_and_heat<true>(slip_time_s);
+  else
+    compute_forces_and_heat<false>(slip_time_s);
+}
+
+template <bool Heat>
+void Simulation::compute_forces_and_heat(double slip_time_s) {
   const int threads = active_threads_;
   const double dt = settings_.time_step_s;
   const Vec3 gravity = settings_.gravity_m_per_s2;
@@ -196,6 +224,15 @@ void Simulation::compute_forces(double slip_time_s) {
   const WallBody* __restrict bodies = walls.bodies.data();
   const std::uint32_t* thread_begin = neighbors_.thread_begin.data();
   const ContactParameterTable& table = contact_parameters_;
+  const ConductionParameterTable& conduction = conduction_parameters_;
+  const double* __restrict temperature = particles.temperature_K.data();
+  const double* __restrict conductivity = particles.conductivity_W_per_mK.data();
+  double* __restrict heat = particles.heat_flow_W.data();
+  const bool friction_heating = settings_.heat.friction_heating;
+  const double wall_partition = settings_.heat.friction_partition;  // the particle's share at a wall
+  std::vector<WallContactHeat> wall_heat_terms(Heat ? n_bodies : 0);
+  for (std::size_t b = 0; b < wall_heat_terms.size(); ++b) wall_heat_terms[b] = WallContactHeat::of(wall_thermal[b]);
+  const WallContactHeat* wall_heat = wall_heat_terms.data();
 
 #pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
   {
@@ -204,6 +241,14 @@ void Simulation::compute_forces(double slip_time_s) {
     for (std::uint32_t i = begin; i < end; ++i) {
       force[i] = gravity * mass[i];
       torque[i] = {};
+      if constexpr (Heat) heat[i] = 0.0;
+    }
+    std::vector<double>& wall_conduction = wall_conduction_by_thread_[t];
+    std::vector<double>& wall_friction = wall_friction_by_thread_[t];
+    double friction_power = 0.0;
+    if constexpr (Heat) {
+      std::fill(wall_conduction.begin(), wall_conduction.end(), 0.0);
+      std::fill(wall_friction.begin(), wall_friction.end(), 0.0);
     }
     std::vector<Spill>& spill = spills_[t];
     spill.clear();
@@ -218,6 +263,11 @@ void Simulation::compute_forces(double slip_time_s) {
       const double ri = radius[i], inv_mi = inv_mass[i], inv_ii = inv_inertia[i];
       const MaterialIndex mat_i = material[i];
       Vec3 force_i, torque_i;
+      double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
+      if constexpr (Heat) {
+        temperature_i = temperature[i];
+        conductivity_i = conductivity[i];
+      }
 
       for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
         const std::uint32_t j = partner[k];
@@ -245,16 +295,32 @@ void Simulation::compute_forces(double slip_time_s) {
         c.inv_inertia_sum = inv_ii + inv_inertia[j];
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
-        const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, material[j]), c, history[k]);
+        const MaterialIndex mat_j = material[j];
+        const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, mat_j), c, history[k]);
         const Vec3 lever = cross(normal, f.tangential_force_on_i_N);
         force_i += f.force_on_i_N;
         torque_i += lever * arm_i + f.rolling_torque_on_i_N_m;
         const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
+        double heat_j = 0.0;
+        if constexpr (Heat) {
+          // Paper Eq. 1: Q_ij = G (T_j - T_i), G = 2 k_c a (or another law, per pair).
+          const double conductance = contact_conductance_W_per_K(
+              conduction(mat_i, mat_j), harmonic_mean(conductivity_i, conductivity[j]), f.contact_radius_m);
+          const double q = conductance * (temperature[j] - temperature_i);
+          heat_i += q;
+          heat_j = -q;
+          if (friction_heating) {  // two particles share the sliding power equally
+            friction_power += f.sliding_power_W;
+            heat_i += 0.5 * f.sliding_power_W;
+            heat_j += 0.5 * f.sliding_power_W;
+          }
+        }
         if (j >= begin && j < end) {
           force[j] -= f.force_on_i_N;
           torque[j] += torque_j;
+          if constexpr (Heat) heat[j] += heat_j;
         } else {
-          spill.push_back({j, -f.force_on_i_N, torque_j});
+          spill.push_back({j, -f.force_on_i_N, torque_j, heat_j});
         }
       }
 
@@ -281,6 +347,22 @@ void Simulation::compute_forces(double slip_time_s) {
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
         const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, wall.material), c, wall_history[k]);
+        if constexpr (Heat) {
+          const WallContactHeat& wh = wall_heat[wall.body];
+          if (wh.conducts) {
+            const double q = contact_conductance_W_per_K(conduction(mat_i, wall.material),
+                                                         wh.contact_conductivity(conductivity_i), f.contact_radius_m) *
+                             (wh.temperature_K - temperature_i);
+            heat_i += q;
+            wall_conduction[wall.body] -= q;
+          }
+          if (friction_heating) {  // an adiabatic wall takes none of it
+            const double share_i = wh.conducts ? wall_partition : 1.0;
+            friction_power += f.sliding_power_W;
+            heat_i += share_i * f.sliding_power_W;
+            wall_friction[wall.body] += (1.0 - share_i) * f.sliding_power_W;
+          }
+        }
         force_i += f.force_on_i_N;
         torque_i += cross(prox.normal, f.tangential_force_on_i_N) * arm + f.rolling_torque_on_i_N_m;
         wall_force[wall.body] -= f.force_on_i_N;
@@ -289,7 +371,9 @@ void Simulation::compute_forces(double slip_time_s) {
       }
       force[i] += force_i;
       torque[i] += torque_i;
+      if constexpr (Heat) heat[i] += heat_i;
     }
+    friction_power_by_thread_[t] = friction_power;
 #pragma omp barrier
     // Contributions to particles of other threads, applied by their owners in thread
     // order: no races, and the sum order is fixed for a given thread count.
@@ -298,6 +382,7 @@ void Simulation::compute_forces(double slip_time_s) {
         if (e.particle >= begin && e.particle < end) {
           force[e.particle] += e.force_N;
           torque[e.particle] += e.torque_N_m;
+          if constexpr (Heat) heat[e.particle] += e.heat_W;
         }
   }
 
@@ -308,6 +393,19 @@ void Simulation::compute_forces(double slip_time_s) {
       walls.bodies[b].force_N += wall_force_by_thread_[t][b];
       walls.bodies[b].torque_N_m += wall_torque_by_thread_[t][b];
     }
+    if constexpr (Heat) {
+      double conducted = 0.0, friction = 0.0;
+      for (int t = 0; t < threads; ++t) {
+        conducted += wall_conduction_by_thread_[t][b];
+        friction += wall_friction_by_thread_[t][b];
+      }
+      wall_thermal[b].heat_flow_to_particles_W = -conducted;
+      wall_friction_power_W_[b] = friction;
+    }
+  }
+  if constexpr (Heat) {
+    friction_power_W_ = 0.0;
+    for (int t = 0; t < threads; ++t) friction_power_W_ += friction_power_by_thread_[t];
   }
   stats_.particle_contacts = particle_contacts;
   stats_.wall_contacts = wall_contacts;

@@ -10,6 +10,10 @@
 #include "core/material.hpp"
 #include "core/particle_store.hpp"
 #include "geometry/wall_set.hpp"
+#include "thermal/conduction_parameters.hpp"
+#include "thermal/thermal_ledger.hpp"
+#include "thermal/thermal_network.hpp"
+#include "thermal/thermal_wall.hpp"
 
 namespace regodem {
 
@@ -19,6 +23,14 @@ struct Domain {
     return x.x >= min_m.x && x.y >= min_m.y && x.z >= min_m.z && x.x <= max_m.x && x.y <= max_m.y &&
            x.z <= max_m.z;
   }
+};
+
+/// Heat transfer settings (DESIGN.md section 2, "Conduction", "Thermal stepping").
+struct HeatSettings {
+  bool enabled = false;
+  double time_scale_factor = 1.0;  // S: every conductance x S, for compressed mechanical time
+  bool friction_heating = false;
+  double friction_partition = 0.5;  // share of sliding power to particle i (to the particle at a wall)
 };
 
 struct SimulationSettings {
@@ -31,6 +43,7 @@ struct SimulationSettings {
   // Below this many particles per thread the force pass is shorter than the threads'
   // synchronisation, so fewer threads run it.
   std::size_t min_particles_per_thread = 2500;
+  HeatSettings heat;
 };
 
 /// Contact counts and extremes seen in the last force pass.
@@ -41,7 +54,9 @@ struct ContactStatistics {
 
 class Simulation {
  public:
-  Simulation(MaterialTable materials, WallSet walls, const SimulationSettings& settings);
+  /// wall_thermal: one per wall body (adiabatic if empty).
+  Simulation(MaterialTable materials, WallSet walls, const SimulationSettings& settings,
+             std::vector<ThermalWall> wall_thermal = {});
 
   /// Advances one time step. Throws SimulationError on a blow-up (non-finite state,
   /// a particle moving more than half its radius in one step) or an escape.
@@ -69,9 +84,31 @@ class Simulation {
   /// Largest particle-particle overlap divided by the smaller diameter of the pair.
   double max_overlap_fraction() const;
 
+  // Heat (DESIGN.md section 2; simulation_heat.cpp).
+  bool heat_enabled() const { return settings_.heat.enabled; }
+  /// Sum of m_i h_i(T_i) over particles (h = integral of c from 0 K) plus C_w T_w of lumped walls.
+  double thermal_energy_J() const;
+  const ThermalLedger& thermal_ledger() const { return ledger_; }
+  /// thermal_energy_J() minus what the ledger expects: round-off in a correct run.
+  double energy_imbalance_J() const { return thermal_energy_J() - ledger_.expected_energy_J(); }
+  /// The conduction network of the current contacts: nodes are the particles (by index)
+  /// then the lumped walls; boundaries are the fixed walls. The maps give each wall
+  /// body's node or boundary index (-1 where it has none).
+  ThermalNetwork thermal_network(std::vector<int>& wall_node, std::vector<int>& wall_boundary);
+  /// Explicit stability limit of the heat step, min C_i / sum G_i over the network's
+  /// nodes at the current contacts (+inf when nothing conducts).
+  double thermal_stability_limit_s();
+  /// Static-bed stages: moves the clock by dt with the mechanics frozen, after the
+  /// caller advanced the temperatures; fixed walls take their prescribed value at the
+  /// new time and the ledger books the boundary heat (J per wall body) of the step.
+  void advance_frozen(double dt_s, const std::vector<double>& boundary_heat_in_by_body_J);
+  /// Re-reads k of every particle from its material at its temperature.
+  void refresh_conductivities();
+
   ParticleStore particles;
   MaterialTable materials;
   WallSet walls;
+  std::vector<ThermalWall> wall_thermal;  // index for index with walls.bodies
 
  private:
   void ensure_forces();
@@ -81,10 +118,17 @@ class Simulation {
   /// Returns the largest displacement since the last neighbour build.
   double first_half_kick_and_drift();
   void second_half_kick();
+  template <bool Heat>
+  void compute_forces_and_heat(double slip_time_s);
+  /// Advances particle and wall temperatures by dt with the heat flows of the last pass.
+  void update_temperatures(double dt_s);
+  double particle_thermal_energy_J(std::size_t i) const;
   [[noreturn]] void report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const;
 
   SimulationSettings settings_;
   ContactParameterTable contact_parameters_;
+  ConductionParameterTable conduction_parameters_;
+  ThermalLedger ledger_;
   NeighborList neighbors_;
   CellGrid grid_;
   double time_s_ = 0.0;
@@ -96,9 +140,15 @@ class Simulation {
   struct Spill {  // a contribution to a particle outside the thread's owner range
     std::uint32_t particle;
     Vec3 force_N, torque_N_m;
+    double heat_W;
   };
   std::vector<std::vector<Spill>> spills_;
   std::vector<std::vector<Vec3>> wall_force_by_thread_, wall_torque_by_thread_;
+  // Heat into each wall body by conduction and by friction, per thread.
+  std::vector<std::vector<double>> wall_conduction_by_thread_, wall_friction_by_thread_;
+  std::vector<double> friction_power_by_thread_;
+  std::vector<double> wall_friction_power_W_;  // summed over threads, last pass
+  double friction_power_W_ = 0.0;              // all sliding contacts, last pass
 };
 
 }  // namespace regodem

@@ -19,6 +19,9 @@ struct PairOverride {
   std::optional<double> restitution, sliding_friction, rolling_friction;
 };
 
+/// How a stage moves heat (see ThermalStepping in the scenario spec).
+enum class HeatStepping { coupled, static_explicit, static_backward_euler, static_crank_nicolson };
+
 struct Stage {
   std::string name;
   bool until_settled = false;
@@ -27,6 +30,12 @@ struct Stage {
   double min_duration_s = 0.0;
   double max_duration_s = std::numeric_limits<double>::infinity();
   std::vector<PairOverride> overrides;
+  // Static-bed stages (anything but coupled) freeze the mechanics: particles and walls
+  // stay put and only temperatures advance, with their own step. They end by time.
+  HeatStepping heat_stepping = HeatStepping::coupled;
+  double thermal_time_step_s = 0.0;  // 0: stability_fraction x the explicit limit
+  double stability_fraction = 0.5;
+  bool freezes_mechanics() const { return heat_stepping != HeatStepping::coupled; }
 };
 
 struct StagePlan {

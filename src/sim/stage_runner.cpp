@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "core/error.hpp"
+#include "sim/static_heat_stepper.hpp"
 
 namespace regodem {
 namespace {
@@ -49,6 +52,22 @@ double kinetic_energy_per_particle(const Simulation& sim) {
          static_cast<double>(sim.particles.size());
 }
 
+/// Refuses a coupled heat step above the explicit limit min m c / sum G (DESIGN.md
+/// section 2): the temperatures would oscillate and grow.
+void check_coupled_heat_step(Simulation& sim) {
+  if (!sim.heat_enabled()) return;
+  const double limit = sim.thermal_stability_limit_s();
+  if (sim.time_step_s() < limit) return;
+  const double scale = sim.settings().heat.time_scale_factor;
+  throw SimulationError(fmt::format(
+      "the time step {:.4g} s is above the heat stability limit {:.4g} s (min m c / sum G over the particles at "
+      "t = {:.6g} s) with time_scale_factor S = {:.4g}; use S below {:.3g}, or a static heat_stepping for a bed "
+      "at rest",
+      sim.time_step_s(), limit, sim.time_s(), scale, scale * limit / sim.time_step_s()));
+}
+
+bool conducting_wall(const ThermalWall& w) { return w.mode != WallThermalMode::adiabatic; }
+
 }  // namespace
 
 std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
@@ -70,6 +89,19 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".force_" + axis, "N"});
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".torque_" + axis, "N m"});
   }
+  if (!sim.heat_enabled()) return columns;
+  columns.insert(columns.end(), {{"temperature_mean", "K"},
+                                 {"temperature_min", "K"},
+                                 {"temperature_max", "K"},
+                                 {"thermal_energy", "J"},
+                                 {"boundary_heat_in", "J"},
+                                 {"friction_heat", "J"},
+                                 {"energy_imbalance", "-"}});
+  for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b)
+    if (conducting_wall(sim.wall_thermal[b])) {
+      columns.push_back({sim.walls.bodies[b].name + ".temperature", "K"});
+      columns.push_back({sim.walls.bodies[b].name + ".heat_flow", "W"});  // into the particles
+    }
   return columns;
 }
 
@@ -94,6 +126,21 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
     row.insert(row.end(), {wall.force_N.x, wall.force_N.y, wall.force_N.z});
     row.insert(row.end(), {wall.torque_N_m.x, wall.torque_N_m.y, wall.torque_N_m.z});
   }
+  if (!sim.heat_enabled()) return row;
+  double sum = 0.0, lowest = std::numeric_limits<double>::quiet_NaN(), highest = lowest;
+  for (double t : sim.particles.temperature_K) {
+    sum += t;
+    lowest = std::isnan(lowest) ? t : std::min(lowest, t);
+    highest = std::isnan(highest) ? t : std::max(highest, t);
+  }
+  const double energy = sim.thermal_energy_J();
+  const ThermalLedger& ledger = sim.thermal_ledger();
+  const double imbalance = energy - ledger.expected_energy_J();
+  row.insert(row.end(), {n > 0 ? sum / n : std::numeric_limits<double>::quiet_NaN(), lowest, highest, energy,
+                         ledger.boundary_heat_in_J, ledger.friction_heat_J,
+                         energy != 0.0 ? imbalance / std::abs(energy) : 0.0});
+  for (const ThermalWall& w : sim.wall_thermal)
+    if (conducting_wall(w)) row.insert(row.end(), {w.temperature_K, w.heat_flow_to_particles_W});
   return row;
 }
 
@@ -138,32 +185,46 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         active.push_back(&ins);
       }
 
-    const std::uint64_t stage_first_step = sim.step_count();
+    std::optional<StaticHeatStepper> frozen;  // a static-bed stage: heat alone, its own step
+    std::string failure;
+    StageResult result = StageResult::finished;
+    try {
+      if (stage.freezes_mechanics())
+        frozen.emplace(sim, stage);
+      else
+        check_coupled_heat_step(sim);
+    } catch (const std::exception& e) {
+      failure = fmt::format("stage '{}' cannot start: {}", stage.name, e.what());
+      result = StageResult::failed;
+    }
+    const double step_s = frozen ? frozen->time_step_s() : dt;
+    const double stage_end_s = info.start_time_s + stage.duration_s;
+    const std::uint64_t check_every = frozen ? 1 : kCheckEverySteps;
     const std::uint64_t planned_steps =
-        stage.until_settled ? 0 : static_cast<std::uint64_t>(std::llround(stage.duration_s / dt));
+        stage.until_settled ? 0
+        : frozen            ? static_cast<std::uint64_t>(std::ceil(stage.duration_s / step_s - 1e-9))
+                            : static_cast<std::uint64_t>(std::llround(stage.duration_s / dt));
     const std::uint64_t min_steps = static_cast<std::uint64_t>(std::llround(stage.min_duration_s / dt));
     const double max_steps_d = stage.max_duration_s / dt;
     double sample_interval = plan.sample_interval_s;
     if (sample_interval <= 0.0) sample_interval = stage.until_settled ? 0.01 : stage.duration_s / 100.0;
-    sample_interval = std::max(sample_interval, dt);  // a zero-length stage still samples once
+    sample_interval = std::max(sample_interval, step_s);  // a zero-length stage still samples once
     double next_sample_s = sim.time_s();
     auto last_progress_clock = Clock::now();
-    std::uint64_t last_progress_step = sim.step_count();
+    std::uint64_t last_progress_step = 0;
     double steps_per_s = 0.0;
-    std::string failure;
-    StageResult result = StageResult::finished;
+    std::uint64_t done = 0;  // steps of this stage (thermal steps in a static-bed stage)
 
-    std::uint64_t last_sampled_step = ~std::uint64_t{0};
+    double last_sampled_time_s = std::numeric_limits<double>::quiet_NaN();
     auto sample = [&] {
       observer.sample(time_series_row(sim, s));
-      last_sampled_step = sim.step_count();
-      while (next_sample_s <= sim.time_s() + 0.5 * dt) next_sample_s += sample_interval;
+      last_sampled_time_s = sim.time_s();
+      while (next_sample_s <= sim.time_s() + 0.5 * step_s) next_sample_s += sample_interval;
     };
     const auto stage_clock = Clock::now();
 
-    try {
+    if (result == StageResult::finished) try {
       for (;;) {
-        const std::uint64_t done = sim.step_count() - stage_first_step;
         bool insertions_done = true;
         for (Insertion* ins : active) {
           if (!ins->finished && sim.time_s() + 0.5 * dt >= ins->next_attempt_s()) {
@@ -175,10 +236,13 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           }
           insertions_done = insertions_done && ins->finished;
         }
-        if (sim.time_s() + 0.5 * dt >= next_sample_s) sample();
+        if (sim.time_s() + 0.5 * step_s >= next_sample_s) {
+          sample();
+          if (!frozen) check_coupled_heat_step(sim);  // the contacts have changed since the last check
+        }
 
         if (!stage.until_settled && done >= planned_steps) break;
-        if (done % kCheckEverySteps == 0) {
+        if (done % check_every == 0) {
           if (stage.until_settled && insertions_done && done >= min_steps &&
               kinetic_energy_per_particle(sim) < stage.settled_kinetic_energy_J)
             break;
@@ -197,12 +261,12 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           }
           const double since = seconds_since(last_progress_clock);
           if (since >= kProgressEveryWallSeconds) {
-            steps_per_s = static_cast<double>(sim.step_count() - last_progress_step) / since;
+            steps_per_s = static_cast<double>(done - last_progress_step) / since;
             // The time left uses the stage's average rate, which does not jump about.
             const double stage_wall = seconds_since(stage_clock);
             const double stage_rate = stage_wall > 0.0 ? static_cast<double>(done) / stage_wall : 0.0;
             last_progress_clock = Clock::now();
-            last_progress_step = sim.step_count();
+            last_progress_step = done;
             ProgressSnapshot snap;
             snap.stage = info;
             snap.time_s = sim.time_s();
@@ -217,7 +281,13 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             observer.progress(snap);
           }
         }
-        sim.step();
+        if (frozen) {
+          const double remaining_s = stage_end_s - sim.time_s();
+          if (remaining_s <= 0.0) break;
+          frozen->advance(std::min(step_s, remaining_s));
+        } else
+          sim.step();
+        ++done;
         particle_steps += static_cast<double>(sim.particles.size());
       }
     } catch (const SimulationError& e) {
@@ -225,7 +295,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       failure = fmt::format("stage '{}' failed: {}", stage.name, e.what());
     }
     if (result == StageResult::finished) {
-      if (last_sampled_step != sim.step_count()) sample();
+      if (last_sampled_time_s != sim.time_s()) sample();
       for (Insertion* ins : active)
         if (ins->inserted < ins->target_count && ins->from_file.empty())
           observer.notice(fmt::format("insertion '{}' placed {} of {} particles during stage '{}'", ins->name,

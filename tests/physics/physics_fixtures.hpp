@@ -15,6 +15,9 @@ struct SphereMaterial {
   double restitution = 0.5;
   double sliding_friction = 0.0;
   double rolling_friction = 0.0;
+  double conductivity = 10.0;     // W/(m K)
+  double specific_heat = 800.0;   // J/(kg K)
+  double real_shear_modulus = 0.0;
 };
 
 /// E* of two bodies of this material: E / (2 (1 - nu^2)), E = 2G(1 + nu).
@@ -29,7 +32,15 @@ inline double sphere_mass(const SphereMaterial& m, double radius) {
 
 inline MaterialTable one_material(const SphereMaterial& m) {
   MaterialTable table;
-  table.add({"grain", m.density, m.shear_modulus, m.poisson});
+  Material grain;
+  grain.name = "grain";
+  grain.density_kg_per_m3 = m.density;
+  grain.shear_modulus_Pa = m.shear_modulus;
+  grain.poisson_ratio = m.poisson;
+  grain.conductivity_W_per_mK = TemperatureCurve(m.conductivity);
+  grain.specific_heat_J_per_kgK = TemperatureCurve(m.specific_heat);
+  grain.real_shear_modulus_Pa = m.real_shear_modulus;
+  table.add(grain);
   PairProperties pair;
   pair.restitution = m.restitution;
   pair.sliding_friction = m.sliding_friction;
@@ -54,8 +65,14 @@ inline SimulationSettings settings_for(double radius, double dt, Vec3 gravity = 
   return s;
 }
 
-inline NewParticle sphere(const Vec3& x, const Vec3& v, double radius, double density) {
+/// Hertz overlap under a normal force F: delta = (3 F / (4 E* sqrt(R*)))^(2/3).
+inline double hertz_overlap(double force_N, double effective_youngs_Pa, double effective_radius_m) {
+  return std::pow(3.0 * force_N / (4.0 * effective_youngs_Pa * std::sqrt(effective_radius_m)), 2.0 / 3.0);
+}
+
+inline NewParticle sphere(const Vec3& x, const Vec3& v, double radius, double density, double temperature_K = 0.0) {
   NewParticle p;
+  p.temperature_K = temperature_K;
   p.position_m = x;
   p.velocity_m_per_s = v;
   p.radius_m = radius;

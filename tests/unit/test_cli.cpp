@@ -244,6 +244,11 @@ TEST_F(CliTest, RunWritesSummaryTimeSeriesAndReproductionFiles) {
   EXPECT_EQ(summary.at("stages")[0].at("result"), "finished");
   EXPECT_EQ(summary.at("stages")[0].at("start_time_s").get<double>(), 0.0);
   EXPECT_EQ(summary.at("stages")[0].at("end_time_s"), summary.at("simulated_time_s"));
+  // No `heat` section: heat off, the defaults recorded.
+  EXPECT_EQ(summary.at("heat"), nlohmann::json({{"enabled", false},
+                                                {"time_scale_factor", 1.0},
+                                                {"friction_heating", false},
+                                                {"friction_partition", 0.5}}));
 
   const std::vector<std::string> lines = read_lines(output / "time_series.csv");
   ASSERT_GE(lines.size(), 3u);  // header and samples at 0.005 s intervals
@@ -259,6 +264,31 @@ TEST_F(CliTest, RunWritesSummaryTimeSeriesAndReproductionFiles) {
 
   EXPECT_EQ(read_file(output / "scenario.yaml"), read_file(scenario));
   EXPECT_EQ(read_file(output / "overrides.txt"), "");
+}
+
+// The heat settings reach summary.json, and `validate` describes them.
+TEST_F(CliTest, HeatSettingsAreRecordedInTheSummary) {
+  std::string yaml = tiny_scenario();
+  yaml.replace(yaml.find("poisson_ratio: 0.25}"), 20,
+               "poisson_ratio: 0.25,\n          conductivity: 1 W/(m K), specific_heat: 800 J/(kg K)}");
+  yaml.replace(yaml.find("    count: 8\n"), 13, "    count: 8\n    temperature: -196 degC\n");
+  yaml += "heat: {time_scale_factor: 10, friction_heating: true, friction_partition: 0.25}\n";
+  const fs::path scenario = write_scenario("warm.yaml", yaml);
+
+  const CommandResult described = run_regodem({"validate", scenario.string()}, directory_);
+  ASSERT_EQ(described.exit_code, 0) << described.output;
+  EXPECT_TRUE(contains(described.output, "heat: on, time-scale factor S = 10, friction heating on (0.25 of it"))
+      << described.output;
+
+  const fs::path output = directory_ / "warm";
+  const CommandResult result = run_regodem({"run", scenario.string(), "-o", output.string(), "--threads", "1",
+                                            "--set", "stages.drop.duration=0.005 s"},
+                                           directory_);
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(read_json(output / "summary.json").at("heat"), nlohmann::json({{"enabled", true},
+                                                                          {"time_scale_factor", 10.0},
+                                                                          {"friction_heating", true},
+                                                                          {"friction_partition", 0.25}}));
 }
 
 TEST_F(CliTest, DefaultOutputDirectoryIsOutSlashScenarioName) {
@@ -409,7 +439,8 @@ TEST(CliBadInput, EveryBadFixtureFailsWithFileAndLine) {
   fs::create_directories(work);
   int checked = 0;
   for (const char* name : {"missing_material.yaml", "negative_radius.yaml", "region_outside_domain.yaml",
-                           "syntax_error.yaml", "unknown_key.yaml", "wrong_unit.yaml"}) {
+                           "syntax_error.yaml", "unknown_key.yaml", "wrong_unit.yaml", "negative_conductivity.yaml",
+                           "lumped_wall_without_mass.yaml", "time_table_not_increasing.yaml"}) {
     const CommandResult result = run_regodem({"run", (fixtures / name).string(), "-o", (work / name).string()}, work);
     EXPECT_EQ(result.exit_code, 2) << name << ":\n" << result.output;
     const std::size_t at = result.output.find(std::string(name) + ":");
@@ -420,7 +451,7 @@ TEST(CliBadInput, EveryBadFixtureFailsWithFileAndLine) {
     EXPECT_FALSE(fs::exists(work / name)) << name;
     ++checked;
   }
-  EXPECT_EQ(checked, 6);
+  EXPECT_EQ(checked, 9);
 }
 
 // A time step above the stable one is refused with the numbers (the limit and the

@@ -3,6 +3,7 @@
 // path; --set overrides edit the tree before it is checked.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,7 +13,11 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "geometry/wall_primitive.hpp"
+#include "scenario/scenario_builder.hpp"
 #include "scenario/scenario_reader.hpp"
+#include "sim/simulation.hpp"
+#include "sim/stage_plan.hpp"
 
 namespace regodem {
 namespace {
@@ -651,7 +656,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadFixture{"wrong_unit.yaml", 23, "insertions.grains.radius", "expected a length"},
         BadFixture{"negative_radius.yaml", 23, "insertions.grains.radius", "must be greater than 0"},
         BadFixture{"missing_material.yaml", 17, "walls.floor.material", "material 'steel' is not defined"},
-        BadFixture{"region_outside_domain.yaml", 22, "insertions.grains.region", "outside the domain"}),
+        BadFixture{"region_outside_domain.yaml", 22, "insertions.grains.region", "outside the domain"},
+        BadFixture{"negative_conductivity.yaml", 11, "materials.grain.conductivity", "must be greater than 0"},
+        BadFixture{"lumped_wall_without_mass.yaml", 23, "walls.floor.thermal",
+                   "missing 'mass' or 'areal_density'"},
+        BadFixture{"time_table_not_increasing.yaml", 25, "walls.floor.thermal.temperature.time[2]",
+                   "the times of a table must increase from row to row: '10 s' follows '20 s'"}),
     [](const ::testing::TestParamInfo<BadFixture>& param_info) {
       std::string name = param_info.param.file;
       return name.substr(0, name.find('.'));
@@ -727,6 +737,527 @@ TEST(ScenarioReaderOverrides, ChangeTheContentHash) {
   EXPECT_NE(plain, read_scenario_string(with(kValid, "seed: 7", "seed: 8"), kFile).content_hash);
   EXPECT_NE(read_scenario_string(kValid, kFile, {"seed=8", "seed=7"}).content_hash,
             read_scenario_string(kValid, kFile, {"seed=7", "seed=8"}).content_hash);
+}
+
+// ----------------------------------------------------------------------------- heat
+
+// The paper's thermal pieces in one file (DESIGN.md sections 2 and 3), one key per line.
+const std::string kHeat = R"(name: heat-test
+domain:
+  min: [-20 mm, -20 mm, 0]
+  max: [20 mm, 20 mm, 150 mm]
+materials:
+  regolith:
+    density: 3000 kg/m^3
+    shear_modulus: 3e7 Pa
+    poisson_ratio: 0.25
+    conductivity: 14.76 W/(m K)
+    specific_heat: {temperature: [100 K, 200 K, 77 degC], value: [300, 600 J/(kg K), 0.9 kJ/(kg K)]}
+    real_shear_modulus: 3 GPa
+  steel:
+    density: 7800
+    shear_modulus: 79 GPa
+    poisson_ratio: 0.3
+    conductivity: 50 W/(m K)
+interactions:
+  - materials: [regolith, regolith]
+    restitution: 0.24
+    sliding_friction: 0.8
+    conduction: radius
+  - materials: [regolith, steel]
+    restitution: 0.3
+    sliding_friction: 0.5
+    conduction: area
+    heat_transfer_coefficient: 5e4 W/(m^2 K)
+walls:
+  - name: barrel
+    type: cylinder
+    base: [0, 0, 0]
+    radius: 15 mm
+    length: 150 mm
+    ends: {bottom: capped}
+  - name: plate
+    type: plane
+    material: steel
+    point: [0, 0, 0]
+    normal: [0, 0, 1]
+    thermal:
+      mode: fixed
+      temperature: {time: [0 s, 10 s, 1 min], value: [-196 degC, 700 degC, 700 degC]}
+      conductivity_mix: harmonic_mean
+  - name: sieve
+    type: sieve
+    segments: 10
+    base: [0, 0, 10 mm]
+    radius: 11 mm
+    length: 12 mm
+    ends: {bottom: capped}
+    thermal:
+      mode: lumped
+      temperature: -196 degC
+      conductivity: 100 W/(m K)
+      specific_heat: 500 J/(kg K)
+      areal_density: 2 kg/m^2
+insertions:
+  - name: fine
+    material: regolith
+    region: {type: cylinder, base: [0, 0, 12 mm], radius: 8 mm, length: 20 mm}
+    diameter: 2 mm
+    count: 20
+    temperature: -196 degC
+  - name: coarse
+    material: regolith
+    region: {type: annulus, base: [0, 0, 12 mm], inner_radius: 12 mm, radius: 14.5 mm, length: 20 mm}
+    diameter: 2 mm
+    count: 20
+    temperature: {value: 100 K, gradient: [0, 0, 1000 K/m], reference_point: [0, 0, 10 mm]}
+stages:
+  - name: fill
+    duration: 0.01 s
+  - name: heat
+    duration: 10 s
+    heat_stepping: static_backward_euler
+    thermal_time_step: 0.1 s
+heat:
+  time_scale_factor: 100
+  friction_heating: true
+  friction_partition: 0.7
+)";
+
+TEST(ScenarioReaderHeat, ThermalKeysMapToSiUnits) {
+  const ScenarioSpec spec = read_scenario_string(kHeat, kFile);
+  const MaterialSpec& regolith = spec.materials[0];
+  ASSERT_TRUE(regolith.conductivity_W_per_mK.has_value());
+  EXPECT_TRUE(regolith.conductivity_W_per_mK->temperature_K.empty());
+  EXPECT_DOUBLE_EQ(regolith.conductivity_W_per_mK->constant, 14.76);
+  ASSERT_TRUE(regolith.specific_heat_J_per_kgK.has_value());
+  const TemperatureCurveSpec& c = *regolith.specific_heat_J_per_kgK;
+  ASSERT_EQ(c.temperature_K.size(), 3u);
+  EXPECT_DOUBLE_EQ(c.temperature_K[0], 100.0);
+  EXPECT_DOUBLE_EQ(c.temperature_K[2], 350.15);  // 77 degC
+  ASSERT_EQ(c.value.size(), 3u);
+  EXPECT_DOUBLE_EQ(c.value[0], 300.0);
+  EXPECT_DOUBLE_EQ(c.value[2], 900.0);  // 0.9 kJ/(kg K)
+  EXPECT_DOUBLE_EQ(regolith.real_shear_modulus_Pa, 3e9);
+  EXPECT_DOUBLE_EQ(spec.materials[1].conductivity_W_per_mK->constant, 50.0);
+  EXPECT_FALSE(spec.materials[1].specific_heat_J_per_kgK.has_value());  // a wall's material needs none
+  EXPECT_DOUBLE_EQ(spec.materials[1].real_shear_modulus_Pa, 0.0);
+
+  EXPECT_EQ(spec.interactions[0].conduction, ConductionLawSpec::radius);
+  EXPECT_EQ(spec.interactions[1].conduction, ConductionLawSpec::area);
+  EXPECT_DOUBLE_EQ(spec.interactions[1].heat_transfer_coefficient_W_per_m2K, 5e4);
+
+  EXPECT_EQ(spec.walls[0].thermal.mode, WallThermalModeSpec::adiabatic);  // no thermal block
+  const WallThermalSpec& plate = spec.walls[1].thermal;
+  EXPECT_EQ(plate.mode, WallThermalModeSpec::fixed);
+  ASSERT_EQ(plate.time_s.size(), 3u);
+  EXPECT_DOUBLE_EQ(plate.time_s[2], 60.0);
+  EXPECT_DOUBLE_EQ(plate.temperature_K[0], 77.15);
+  EXPECT_DOUBLE_EQ(plate.temperature_K[1], 973.15);
+  EXPECT_TRUE(plate.harmonic_mean);
+  EXPECT_FALSE(plate.conductivity_W_per_mK.has_value());
+  const WallSpec& sieve = spec.walls[2];
+  EXPECT_EQ(sieve.shape, WallShape::sieve);
+  EXPECT_EQ(sieve.segments, 10);
+  EXPECT_DOUBLE_EQ(sieve.radius_m, 0.011);
+  EXPECT_DOUBLE_EQ(sieve.length_m, 0.012);
+  EXPECT_DOUBLE_EQ(sieve.point_m.z, 0.01);
+  EXPECT_DOUBLE_EQ(sieve.normal.z, 1.0);  // default axis
+  EXPECT_TRUE(sieve.cap_bottom);
+  EXPECT_EQ(sieve.side, CylinderSide::both);
+  EXPECT_EQ(sieve.thermal.mode, WallThermalModeSpec::lumped);
+  EXPECT_DOUBLE_EQ(sieve.thermal.temperature_K.at(0), 77.15);
+  EXPECT_DOUBLE_EQ(*sieve.thermal.conductivity_W_per_mK, 100.0);
+  EXPECT_DOUBLE_EQ(sieve.thermal.specific_heat_J_per_kgK, 500.0);
+  EXPECT_DOUBLE_EQ(sieve.thermal.areal_density_kg_per_m2, 2.0);
+  EXPECT_DOUBLE_EQ(sieve.thermal.mass_kg, 0.0);
+  EXPECT_FALSE(sieve.thermal.harmonic_mean);
+
+  ASSERT_TRUE(spec.insertions[0].temperature.has_value());
+  EXPECT_DOUBLE_EQ(spec.insertions[0].temperature->value_K, 77.15);
+  EXPECT_DOUBLE_EQ(spec.insertions[0].temperature->gradient_K_per_m.z, 0.0);
+  const InitialTemperatureSpec& field = *spec.insertions[1].temperature;
+  EXPECT_DOUBLE_EQ(field.value_K, 100.0);
+  EXPECT_DOUBLE_EQ(field.gradient_K_per_m.z, 1000.0);
+  EXPECT_DOUBLE_EQ(field.reference_point_m.z, 0.01);
+
+  EXPECT_EQ(spec.stages[0].heat_stepping, ThermalStepping::coupled);
+  EXPECT_EQ(spec.stages[1].heat_stepping, ThermalStepping::static_backward_euler);
+  EXPECT_DOUBLE_EQ(spec.stages[1].thermal_time_step_s, 0.1);
+  EXPECT_DOUBLE_EQ(spec.stages[1].stability_fraction, 0.5);  // default
+
+  EXPECT_TRUE(spec.heat.enabled);
+  EXPECT_DOUBLE_EQ(spec.heat.time_scale_factor, 100.0);
+  EXPECT_TRUE(spec.heat.friction_heating);
+  EXPECT_DOUBLE_EQ(spec.heat.friction_partition, 0.7);
+}
+
+TEST(ScenarioReaderHeat, DefaultsWithoutAndWithAnEmptyHeatSection) {
+  const ScenarioSpec plain = read_scenario_string(kValid, kFile);
+  EXPECT_FALSE(plain.heat.enabled);
+  EXPECT_EQ(plain.interactions[0].conduction, ConductionLawSpec::force);
+  EXPECT_FALSE(plain.materials[0].conductivity_W_per_mK.has_value());
+  EXPECT_FALSE(plain.insertions[0].temperature.has_value());
+
+  const std::string text = with(with(kHeat, "heat:\n  time_scale_factor: 100\n  friction_heating: true\n"
+                                            "  friction_partition: 0.7\n", "heat: {}\n"),
+                                "    conduction: radius\n", "");
+  const ScenarioSpec spec = read_scenario_string(text, kFile);
+  EXPECT_TRUE(spec.heat.enabled);
+  EXPECT_DOUBLE_EQ(spec.heat.time_scale_factor, 1.0);
+  EXPECT_FALSE(spec.heat.friction_heating);
+  EXPECT_DOUBLE_EQ(spec.heat.friction_partition, 0.5);
+  EXPECT_EQ(spec.interactions[0].conduction, ConductionLawSpec::force);
+}
+
+TEST(ScenarioReaderHeat, LumpedWallByMassAndStaticExplicitByFraction) {
+  std::string text = with(kHeat, "      areal_density: 2 kg/m^2", "      mass: 3 g");
+  text = with(text, "    heat_stepping: static_backward_euler\n    thermal_time_step: 0.1 s",
+              "    heat_stepping: static_explicit\n    stability_fraction: 0.25");
+  const ScenarioSpec spec = read_scenario_string(text, kFile);
+  EXPECT_DOUBLE_EQ(spec.walls[2].thermal.mass_kg, 0.003);
+  EXPECT_EQ(spec.stages[1].heat_stepping, ThermalStepping::static_explicit);
+  EXPECT_DOUBLE_EQ(spec.stages[1].stability_fraction, 0.25);
+  EXPECT_DOUBLE_EQ(spec.stages[1].thermal_time_step_s, 0.0);
+}
+
+TEST(ScenarioReaderHeat, YoungsFormOfTheRealModulus) {
+  const ScenarioSpec spec =
+      read_scenario_string(with(kHeat, "real_shear_modulus: 3 GPa", "real_youngs_modulus: 7.5 GPa"), kFile);
+  EXPECT_DOUBLE_EQ(spec.materials[0].real_shear_modulus_Pa, 7.5e9 / 2.5);
+}
+
+TEST(ScenarioReaderHeat, NegativeOrZeroThermalProperties) {
+  expect_problem(with(kHeat, "conductivity: 14.76 W/(m K)", "conductivity: -14.76 W/(m K)"), "-14.76",
+                 "materials.regolith.conductivity", "must be greater than 0, got '-14.76 W/(m K)'");
+  expect_problem(with(kHeat, "conductivity: 14.76 W/(m K)", "conductivity: 0"), "conductivity: 0",
+                 "materials.regolith.conductivity", "must be greater than 0");
+  expect_problem(with(kHeat, "value: [300, 600 J/(kg K)", "value: [300, -600 J/(kg K)"), "-600",
+                 "materials.regolith.specific_heat.value[1]", "must be greater than 0");
+  expect_problem(with(kHeat, "      specific_heat: 500 J/(kg K)", "      specific_heat: -500 J/(kg K)"),
+                 "-500 J/(kg K)", "walls.sieve.thermal.specific_heat", "must be greater than 0");
+  expect_problem(with(kHeat, "conductivity: 100 W/(m K)", "conductivity: -1 W/(m K)"), "-1 W/(m K)",
+                 "walls.sieve.thermal.conductivity", "must be greater than 0");
+  expect_problem(with(kHeat, "conductivity: 14.76 W/(m K)", "conductivity: 14.76 J/(kg K)"), "14.76 J/(kg K)",
+                 "materials.regolith.conductivity", "expected a thermal conductivity");
+}
+
+TEST(ScenarioReaderHeat, TablesMustIncreaseAndMatch) {
+  expect_problem(with(kHeat, "[100 K, 200 K, 77 degC]", "[100 K, 200 K, -100 degC]"), "[100 K, 200 K, -100 degC]",
+                 "materials.regolith.specific_heat.temperature[2]",
+                 "must increase from row to row: '-100 degC' follows '200 K'");
+  expect_problem(with(kHeat, "[100 K, 200 K, 77 degC]", "[100 K, 200 K]"), "[100 K, 200 K]",
+                 "materials.regolith.specific_heat.value", "has 3 values but 'temperature' has 2");
+  expect_problem(with(kHeat, "[0 s, 10 s, 1 min]", "[0 s, 10 s, 10 s]"), "[0 s, 10 s, 10 s]",
+                 "walls.plate.thermal.temperature.time[2]", "must increase from row to row");
+  expect_problem(with(kHeat, "[0 s, 10 s, 1 min]", "[0 s, 1 min]"), "{time: [0 s, 1 min]",
+                 "walls.plate.thermal.temperature.value", "has 3 values but 'time' has 2");
+  expect_problem(with(kHeat, "{temperature: [100 K", "{temperatures: [100 K"), "temperatures",
+                 "materials.regolith.specific_heat.temperatures", "did you mean 'temperature'?");
+  expect_problem(with(kHeat, "[100 K, 200 K, 77 degC]", "[]"), "temperature: []",
+                 "materials.regolith.specific_heat.temperature", "a list of one or more values");
+}
+
+TEST(ScenarioReaderHeat, AreaLawNeedsItsCoefficient) {
+  expect_problem(with(kHeat, "    heat_transfer_coefficient: 5e4 W/(m^2 K)\n", ""), "conduction: area",
+                 "interactions[1].conduction", "needs 'heat_transfer_coefficient'");
+  expect_problem(with(kHeat, "    conduction: radius\n",
+                      "    conduction: radius\n    heat_transfer_coefficient: 1 W/(m^2 K)\n"),
+                 "heat_transfer_coefficient: 1 W", "interactions[0].heat_transfer_coefficient",
+                 "only used with 'conduction: area'");
+  expect_problem(with(kHeat, "conduction: radius", "conduction: radial"), "conduction: radial",
+                 "interactions[0].conduction", "did you mean 'radius'?");
+  expect_problem(with(kHeat, "5e4 W/(m^2 K)", "5e4 W/(m K)"), "5e4 W/(m K)",
+                 "interactions[1].heat_transfer_coefficient", "expected a heat transfer coefficient");
+}
+
+TEST(ScenarioReaderHeat, LumpedWallNeedsItsMassAndCapacity) {
+  const std::string sieve_thermal = "    thermal:\n      mode: lumped";
+  expect_problem(with(kHeat, "      areal_density: 2 kg/m^2\n", ""), sieve_thermal, "walls.sieve.thermal",
+                 "missing 'mass' or 'areal_density'");
+  expect_problem(with(kHeat, "      areal_density: 2 kg/m^2\n", "      areal_density: 2 kg/m^2\n      mass: 1 g\n"),
+                 sieve_thermal, "walls.sieve.thermal", "give only one of 'mass' or 'areal_density'");
+  expect_problem(with(kHeat, "      specific_heat: 500 J/(kg K)\n", ""), sieve_thermal, "walls.sieve.thermal",
+                 "missing required key 'specific_heat'");
+  expect_problem(with(kHeat, "      temperature: -196 degC\n", ""), sieve_thermal, "walls.sieve.thermal",
+                 "missing required key 'temperature'");
+  expect_problem(with(kHeat, "      temperature: -196 degC\n", "      temperature: {time: [0], value: [77]}\n"),
+                 "temperature: {time: [0]", "walls.sieve.thermal.temperature", "give one temperature");
+  // A plane has no area.
+  const std::string plane = with(kHeat,
+                                 "      mode: fixed\n      temperature: {time: [0 s, 10 s, 1 min], value: [-196 degC, "
+                                 "700 degC, 700 degC]}\n",
+                                 "      mode: lumped\n      temperature: 300 K\n      specific_heat: 500\n"
+                                 "      areal_density: 1 kg/m^2\n");
+  expect_problem(plane, "areal_density: 1 kg/m^2", "walls.plate.thermal.areal_density", "a plane is unbounded");
+}
+
+TEST(ScenarioReaderHeat, ThermalKeysOfAnotherModeAreExplained) {
+  expect_problem(with(kHeat, "      conductivity_mix: harmonic_mean", "      mass: 1 kg"), "mass: 1 kg",
+                 "walls.plate.thermal.mass", "only a lumped wall has a heat capacity");
+  const std::string adiabatic = with(kHeat, "    length: 150 mm\n    ends: {bottom: capped}\n",
+                                     "    length: 150 mm\n    ends: {bottom: capped}\n"
+                                     "    thermal: {mode: adiabatic, temperature: 300 K}\n");
+  expect_problem(adiabatic, "thermal: {mode: adiabatic", "walls.barrel.thermal.temperature",
+                 "an adiabatic wall passes no heat");
+  expect_problem(with(kHeat, "      mode: fixed", "      mode: fxed"), "mode: fxed", "walls.plate.thermal.mode",
+                 "did you mean 'fixed'?");
+  expect_problem(with(kHeat, "conductivity_mix: harmonic_mean", "conductivity_mix: harmonic_man"),
+                 "conductivity_mix: harmonic_man", "walls.plate.thermal.conductivity_mix",
+                 "did you mean 'harmonic_mean'?");
+}
+
+TEST(ScenarioReaderHeat, SieveKeys) {
+  expect_problem(with(kHeat, "    segments: 10\n", ""), "- name: sieve", "walls.sieve", "missing required key 'segments'");
+  expect_problem(with(kHeat, "    segments: 10\n", "    segments: 0\n"), "segments: 0", "walls.sieve.segments",
+                 "at least 1");
+  expect_problem(with(kHeat, "    segments: 10\n", "    segments: 2.5\n"), "segments: 2.5", "walls.sieve.segments",
+                 "whole number");
+  expect_problem(with(kHeat, "    base: [0, 0, 10 mm]", "    point: [0, 0, 10 mm]"), "point: [0, 0, 10 mm]",
+                 "walls.sieve.point", "a sieve takes 'base'");
+  expect_problem(with(kHeat, "    length: 12 mm\n    ends: {bottom: capped}", "    length: 12 mm\n    cap_bottom: true"),
+                 "cap_bottom", "walls.sieve.cap_bottom", "'ends: {bottom: capped}'");
+  expect_problem(with(kHeat, "    length: 12 mm\n    ends: {bottom: capped}", "    length: 12 mm\n    ends: {top: capped}"),
+                 "ends: {top: capped}", "walls.sieve.ends.top", "the top of a sieve is open");
+  expect_problem(with(kHeat, "    length: 12 mm\n    ends: {bottom: capped}",
+                      "    length: 12 mm\n    ends: {bottom: capped}\n    contact: inside"),
+                 "contact: inside", "walls.sieve.contact", "from both sides");
+  expect_problem(with(kHeat, "    segments: 10\n", "    segments: 12\n"), "- name: sieve", "walls.sieve",
+                 "outside the domain");  // 10 mm + 12 x 12 mm = 154 mm > 150 mm
+}
+
+TEST(ScenarioReaderHeat, InsertionTemperatureFields) {
+  expect_problem(with(kHeat, "gradient: [0, 0, 1000 K/m]", "gradient: [0, 0, 1000 K]"), "1000 K]",
+                 "insertions.coarse.temperature.gradient[2]", "expected a temperature gradient");
+  expect_problem(with(kHeat, "temperature: {value: 100 K", "temperature: {valu: 100 K"), "valu:",
+                 "insertions.coarse.temperature.valu", "did you mean 'value'?");
+  // 100 K - 5000 K/m x (32 mm - 10 mm) at the region's top: -10 K.
+  expect_problem(with(kHeat, "gradient: [0, 0, 1000 K/m]", "gradient: [0, 0, -5000 K/m]"),
+                 "gradient: [0, 0, -5000 K/m]", "insertions.coarse.temperature",
+                 "falls below absolute zero in the region (to -10 K)");
+  EXPECT_EQ(error_of(with(kHeat, "gradient: [0, 0, 1000 K/m]", "gradient: [0, 0, -4000 K/m]")), "");  // 12 K
+  // Radially: 14.5 mm from the axis at -1e4 K/m along x takes 100 K down to -45 K.
+  expect_problem(with(kHeat, "gradient: [0, 0, 1000 K/m]", "gradient: [-1e4 K/m, 0, 0]"),
+                 "gradient: [-1e4 K/m, 0, 0]", "insertions.coarse.temperature", "(to -45 K)");
+  expect_problem(with(kHeat, "    count: 20\n    temperature: -196 degC\n", "    count: 20\n    temperature: -300 degC\n"),
+                 "-300 degC",
+                 "insertions.fine.temperature", "below absolute zero");
+}
+
+TEST(ScenarioReaderHeat, HeatOnNeedsThermalPropertiesAndTemperatures) {
+  expect_problem(with(kHeat, "    conductivity: 14.76 W/(m K)\n", ""), "  regolith:", "materials.regolith",
+                 "heat is on, so the particle material 'regolith' needs 'conductivity'");
+  const std::string neither = with(with(kHeat, "    conductivity: 14.76 W/(m K)\n", ""),
+                                   "    specific_heat: {temperature: [100 K, 200 K, 77 degC], value: [300, "
+                                   "600 J/(kg K), 0.9 kJ/(kg K)]}\n",
+                                   "");
+  expect_problem(neither, "  regolith:", "materials.regolith", "needs 'conductivity' (e.g. 14.76 W/(m K)) and "
+                                                                "'specific_heat'");
+  const std::string fine_temperature = "    count: 20\n    temperature: -196 degC\n";
+  expect_problem(with(kHeat, fine_temperature, "    count: 20\n"), "- name: fine", "insertions.fine",
+                 "heat is on: give the particles' initial 'temperature'");
+  // The same file with heat switched off reads: nothing thermal is then required.
+  std::string off = with(with(kHeat, "    conductivity: 14.76 W/(m K)\n", ""), fine_temperature, "    count: 20\n");
+  off = with(off, "    heat_stepping: static_backward_euler\n    thermal_time_step: 0.1 s\n", "");
+  off = with(off, "heat:\n", "heat:\n  enabled: false\n");
+  const ScenarioSpec spec = read_scenario_string(off, kFile);
+  EXPECT_FALSE(spec.heat.enabled);
+  EXPECT_EQ(spec.walls[1].thermal.mode, WallThermalModeSpec::fixed);  // kept, ignored while heat is off
+}
+
+TEST(ScenarioReaderHeat, ThermalWallOrStaticStageWithoutAHeatSection) {
+  const std::string no_heat = kHeat.substr(0, kHeat.find("heat:\n  time_scale"));
+  expect_problem(no_heat, "      mode: fixed", "walls.plate.thermal.mode",
+                 "a fixed wall exchanges heat, but heat transfer is off: add a top-level `heat:` section");
+  expect_problem(no_heat, "      mode: lumped", "walls.sieve.thermal.mode", "add a top-level `heat:` section");
+  expect_problem(no_heat, "heat_stepping: static_backward_euler", "stages.heat.heat_stepping",
+                 "add a top-level `heat:` section");
+  expect_problem(with(kHeat, "heat:\n", "heat:\n  enabled: false\n"), "heat_stepping: static_backward_euler",
+                 "stages.heat.heat_stepping", "heat is off (`heat: {enabled: false}`)");
+}
+
+TEST(ScenarioReaderHeat, HeatSectionValues) {
+  expect_problem(with(kHeat, "friction_partition: 0.7", "friction_partition: 1.5"), "friction_partition: 1.5",
+                 "heat.friction_partition", "must lie between 0 and 1, got '1.5'");
+  expect_problem(with(kHeat, "time_scale_factor: 100", "time_scale_factor: 0"), "time_scale_factor: 0",
+                 "heat.time_scale_factor", "must be greater than 0");
+  expect_problem(with(kHeat, "friction_heating: true", "friction_heating: yes please"), "yes please",
+                 "heat.friction_heating", "expected true or false");
+  expect_problem(with(kHeat, "time_scale_factor: 100", "timescale_factor: 100"), "timescale_factor",
+                 "heat.timescale_factor", "did you mean 'time_scale_factor'?");
+  EXPECT_EQ(error_of(with(kHeat, "friction_partition: 0.7", "friction_partition: 0")), "");  // all to the wall
+}
+
+TEST(ScenarioReaderHeat, StaticStages) {
+  expect_problem(with(kHeat, "    duration: 10 s\n", "    until: settled\n    kinetic_energy_per_particle: 1e-12 J\n"),
+                 "until: settled", "stages.heat.until", "give its 'duration'");
+  expect_problem(with(kHeat, "    thermal_time_step: 0.1 s\n",
+                      "    thermal_time_step: 0.1 s\n    overrides: [{sliding_friction: 0}]\n"),
+                 "overrides: [", "stages.heat.overrides", "would change nothing");
+  expect_problem(with(kHeat, "    thermal_time_step: 0.1 s\n", "    thermal_time_step: 0.1 s\n    stability_fraction: 0.5\n"),
+                 "- name: heat", "stages.heat", "give only one of 'thermal_time_step' or 'stability_fraction'");
+  expect_problem(with(kHeat, "    thermal_time_step: 0.1 s\n", "    stability_fraction: 1.5\n"),
+                 "stability_fraction: 1.5", "stages.heat.stability_fraction", "greater than 0 and at most 1");
+  expect_problem(with(kHeat, "    thermal_time_step: 0.1 s\n", "    thermal_time_step: -0.1 s\n"), "-0.1 s",
+                 "stages.heat.thermal_time_step", "must be greater than 0");
+  expect_problem(with(kHeat, "    duration: 0.01 s\n", "    duration: 0.01 s\n    thermal_time_step: 1 s\n"),
+                 "thermal_time_step: 1 s", "stages.fill.thermal_time_step", "only for a static-bed stage");
+  expect_problem(with(kHeat, "static_backward_euler", "static_backwards_euler"), "static_backwards_euler",
+                 "stages.heat.heat_stepping", "did you mean 'static_backward_euler'?");
+  // Nothing is inserted in a static stage: named, or the first stage by default.
+  expect_problem(with(kHeat, "    count: 20\n    temperature: -196 degC\n",
+                      "    count: 20\n    temperature: -196 degC\n    stage: heat\n"),
+                 "stage: heat", "insertions.fine.stage", "stage 'heat' is a static-bed stage");
+  std::string first_static = with(kHeat, "stages:\n  - name: fill\n    duration: 0.01 s\n", "stages:\n");
+  first_static = with(first_static, "    thermal_time_step: 0.1 s\n",
+                      "    thermal_time_step: 0.1 s\n  - name: fill\n    duration: 0.01 s\n");
+  expect_problem(first_static, "- name: fine", "insertions.fine", "without 'stage' an insertion belongs to the first stage");
+}
+
+// The builder maps the spec onto the engine: materials, pairs, thermal walls and the
+// sieve's segments, heat settings, stages (values in SI, so exact).
+TEST(ScenarioBuilderHeat, MapsEverythingOntoTheSimulation) {
+  const ScenarioSpec spec = read_scenario_string(kHeat, kFile);
+  const PreparedRun run = PreparedRun::build(spec, 1);
+  const Simulation& sim = run.simulation();
+
+  const Material& regolith = sim.materials[0];
+  EXPECT_DOUBLE_EQ(regolith.conductivity_W_per_mK.at(300.0), 14.76);
+  EXPECT_DOUBLE_EQ(regolith.specific_heat_J_per_kgK.at(150.0), 450.0);  // halfway between 300 and 600
+  EXPECT_DOUBLE_EQ(regolith.real_shear_modulus_Pa, 3e9);
+  EXPECT_EQ(sim.materials.pair(0, 0).conduction, ConductionLaw::radius);
+  EXPECT_EQ(sim.materials.pair(0, 1).conduction, ConductionLaw::area);
+  EXPECT_DOUBLE_EQ(sim.materials.pair(1, 0).heat_transfer_coefficient_W_per_m2K, 5e4);
+
+  const HeatSettings& heat = sim.settings().heat;
+  EXPECT_TRUE(heat.enabled);
+  EXPECT_DOUBLE_EQ(heat.time_scale_factor, 100.0);
+  EXPECT_TRUE(heat.friction_heating);
+  EXPECT_DOUBLE_EQ(heat.friction_partition, 0.7);
+
+  // barrel, plate, then the sieve's ten segments, top first.
+  ASSERT_EQ(sim.walls.bodies.size(), 12u);
+  ASSERT_EQ(sim.wall_thermal.size(), 12u);
+  EXPECT_EQ(sim.wall_thermal[0].mode, WallThermalMode::adiabatic);
+  const ThermalWall& plate = sim.wall_thermal[1];
+  EXPECT_EQ(plate.mode, WallThermalMode::fixed);
+  EXPECT_DOUBLE_EQ(plate.temperature_K, 77.15);
+  EXPECT_DOUBLE_EQ(plate.prescribed_temperature_K.at(5.0), 0.5 * (77.15 + 973.15));
+  EXPECT_DOUBLE_EQ(plate.prescribed_temperature_K.at(100.0), 973.15);
+  ASSERT_TRUE(plate.conductivity_W_per_mK.has_value());  // from its material, steel
+  EXPECT_DOUBLE_EQ(*plate.conductivity_W_per_mK, 50.0);
+  EXPECT_EQ(plate.mix, WallConductivityMix::harmonic_mean);
+
+  constexpr double kPi = std::numbers::pi;
+  const double r = 0.011, length = 0.012;
+  for (int k = 1; k <= 10; ++k) {
+    SCOPED_TRACE(k);
+    const std::uint32_t body = static_cast<std::uint32_t>(1 + k);
+    EXPECT_EQ(sim.walls.bodies[body].name, "sieve[" + std::to_string(k) + "]");
+    const ThermalWall& segment = sim.wall_thermal[body];
+    EXPECT_EQ(segment.mode, WallThermalMode::lumped);
+    EXPECT_DOUBLE_EQ(segment.temperature_K, 77.15);
+    EXPECT_DOUBLE_EQ(*segment.conductivity_W_per_mK, 100.0);
+    EXPECT_EQ(segment.mix, WallConductivityMix::wall);
+    // Areal density x area: the shell, and the bottom disk of the lowest segment.
+    const double area = 2.0 * kPi * r * length + (k == 10 ? kPi * r * r : 0.0);
+    EXPECT_NEAR(segment.heat_capacity_J_per_K, 2.0 * area * 500.0, 1e-12);
+    // The segment's shell starts (10 - k) segment lengths above the sieve's base.
+    int shells = 0, disks = 0;
+    for (const WallPrimitive& p : sim.walls.primitives) {
+      if (p.body != body) continue;
+      if (p.shape == PrimitiveShape::cylinder) {
+        ++shells;
+        EXPECT_NEAR(p.point_m.z, 0.01 + length * (10 - k), 1e-15);
+        EXPECT_DOUBLE_EQ(p.length_m, length);
+        EXPECT_DOUBLE_EQ(p.radius_m, r);
+        EXPECT_TRUE(p.contact_inside && p.contact_outside);
+        EXPECT_EQ(p.rim_top, k == 1);  // edges only at the sieve's own ends
+        EXPECT_FALSE(p.rim_bottom);    // the bottom one is capped
+      } else if (p.shape == PrimitiveShape::disk) {
+        ++disks;
+        EXPECT_NEAR(p.point_m.z, 0.01, 1e-15);
+      }
+    }
+    EXPECT_EQ(shells, 1);
+    EXPECT_EQ(disks, k == 10 ? 1 : 0);
+  }
+
+  const StagePlan& plan = run.plan();
+  ASSERT_EQ(plan.stages.size(), 2u);
+  EXPECT_EQ(plan.stages[0].heat_stepping, HeatStepping::coupled);
+  EXPECT_EQ(plan.stages[1].heat_stepping, HeatStepping::static_backward_euler);
+  EXPECT_DOUBLE_EQ(plan.stages[1].thermal_time_step_s, 0.1);
+  ASSERT_EQ(plan.insertions.size(), 2u);
+  EXPECT_DOUBLE_EQ(plan.insertions[0].temperature.at(Vec3{0.0, 0.0, 0.02}), 77.15);
+  EXPECT_DOUBLE_EQ(plan.insertions[1].temperature.at(Vec3{0.0, 0.0, 0.02}), 110.0);  // 100 K + 1000 K/m x 10 mm
+
+  const std::vector<std::string> lines = run.describe();
+  const auto mentions = [&](const std::string& fragment) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(fragment) != std::string::npos; });
+  };
+  EXPECT_TRUE(mentions("heat: on, time-scale factor S = 100"));
+  EXPECT_TRUE(mentions("sieve 'sieve' (10 segments 'sieve[1]' at the top to 'sieve[10]' at the bottom, each): lumped"));
+  EXPECT_TRUE(mentions("wall 'plate': fixed at 77.15 K to 973.15 K"));
+  EXPECT_TRUE(mentions("static bed (mechanics frozen), heat by backward Euler, thermal step 0.1 s"));
+}
+
+TEST(ScenarioBuilderHeat, OpenSieveHasEdgesAtBothEndsAndAMassPerSegment) {
+  std::string text = with(kHeat, "    length: 12 mm\n    ends: {bottom: capped}", "    length: 12 mm");
+  text = with(text, "      areal_density: 2 kg/m^2", "      mass: 3 g");
+  text = with(text, "    segments: 10", "    segments: 2");
+  const PreparedRun run = PreparedRun::build(read_scenario_string(text, kFile), 1);
+  const Simulation& sim = run.simulation();
+  ASSERT_EQ(sim.walls.bodies.size(), 4u);
+  EXPECT_EQ(sim.walls.bodies[3].name, "sieve[2]");
+  for (std::uint32_t body : {2u, 3u}) {
+    EXPECT_DOUBLE_EQ(sim.wall_thermal[body].heat_capacity_J_per_K, 0.003 * 500.0);
+    for (const WallPrimitive& p : sim.walls.primitives) {
+      if (p.body != body) continue;
+      EXPECT_EQ(p.shape, PrimitiveShape::cylinder);
+      EXPECT_EQ(p.rim_top, body == 2u);
+      EXPECT_EQ(p.rim_bottom, body == 3u);
+    }
+  }
+}
+
+TEST(ScenarioBuilderHeat, ParticlesFromAFileTakeTheirOwnTemperatureOrTheField) {
+  const TemporaryDirectory directory;
+  directory.write("with.csv", "x,y,z,radius,temperature\n0,0,0.02,0.001,300\n0,0.003,0.02,0.001,310\n");
+  directory.write("without.csv", "x,y,z,radius\n0,0,0.02,0.001\n");
+  const std::string region = "    region: {type: cylinder, base: [0, 0, 12 mm], radius: 8 mm, length: 20 mm}\n"
+                             "    diameter: 2 mm\n    count: 20\n";
+  // The file's column wins over the insertion's temperature.
+  directory.write("with.yaml", with(kHeat, region, "    file: with.csv\n"));
+  PreparedRun run = PreparedRun::build(read_scenario_file((directory.path() / "with.yaml").string()), 1);
+  ASSERT_EQ(run.plan().insertions[0].from_file.size(), 2u);
+  EXPECT_DOUBLE_EQ(run.plan().insertions[0].from_file[0].temperature_K, 300.0);
+  EXPECT_DOUBLE_EQ(run.plan().insertions[0].from_file[1].temperature_K, 310.0);
+  // Without a column: the insertion's field at the particle.
+  directory.write("field.yaml", with(kHeat, region, "    file: without.csv\n"));
+  run = PreparedRun::build(read_scenario_file((directory.path() / "field.yaml").string()), 1);
+  EXPECT_DOUBLE_EQ(run.plan().insertions[0].from_file[0].temperature_K, 77.15);
+  // Neither, with heat on: refused, naming the insertion.
+  directory.write("neither.yaml",
+                  with(kHeat, region + "    temperature: -196 degC\n", "    file: without.csv\n"));
+  const ScenarioSpec neither = read_scenario_file((directory.path() / "neither.yaml").string());
+  try {
+    PreparedRun::build(neither, 1);
+    FAIL() << "a file without temperatures was accepted with heat on";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("insertions.fine: heat is on, but"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("no temperature for 1 of its 1 particles"), std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(ScenarioBuilderHeat, HeatOffLeavesTheWallsThermalSideForTheRecord) {
+  std::string text = with(kHeat, "heat:\n", "heat:\n  enabled: false\n");
+  text = with(text, "    heat_stepping: static_backward_euler\n    thermal_time_step: 0.1 s\n", "");
+  const PreparedRun run = PreparedRun::build(read_scenario_string(text, kFile), 1);
+  EXPECT_FALSE(run.simulation().settings().heat.enabled);
+  const std::vector<std::string> lines = run.describe();
+  EXPECT_NE(std::find(lines.begin(), lines.end(), "heat: off"), lines.end());
 }
 
 }  // namespace

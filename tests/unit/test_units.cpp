@@ -111,6 +111,22 @@ TEST(Units, EnergyForcePowerAndThermalProperties) {
   expect_si("14.76 W/(m K)", Dimension::thermal_conductivity, 14.76);
   expect_si("14.76 W/(m*K)", Dimension::thermal_conductivity, 14.76);
   expect_si("800 J/(kg K)", Dimension::specific_heat, 800.0);
+  expect_si("0.8 kJ/(kg K)", Dimension::specific_heat, 800.0);
+}
+
+TEST(Units, HeatTransferCoefficientArealDensityAndTemperatureGradient) {
+  expect_si("5e4 W/(m^2 K)", Dimension::heat_transfer_coefficient, 5e4);
+  expect_si("5 kW/m^2/K", Dimension::heat_transfer_coefficient, 5e3);
+  expect_si("7.8 kg/m^2", Dimension::areal_density, 7.8);
+  expect_si("0.78 g/cm^2", Dimension::areal_density, 7.8);
+  expect_si("-50 K/m", Dimension::temperature_gradient, -50.0);
+  expect_si("2 K/mm", Dimension::temperature_gradient, 2000.0);
+  // A gradient is a difference per length: no absolute-zero check, and degC stays alone.
+  EXPECT_NE(error_of("2 degC/mm", Dimension::temperature_gradient).find("can only stand alone"),
+            std::string::npos);
+  EXPECT_NE(error_of("14.76 W/(m K)", Dimension::heat_transfer_coefficient)
+                .find("which is a thermal conductivity"),
+            std::string::npos);
 }
 
 TEST(Units, RatesAndPercentages) {
@@ -205,7 +221,9 @@ TEST(Units, DimensionsDescribeThemselves) {
         Dimension::time, Dimension::mass, Dimension::velocity, Dimension::acceleration,
         Dimension::angle, Dimension::angular_velocity, Dimension::rate, Dimension::pressure,
         Dimension::density, Dimension::temperature, Dimension::energy, Dimension::force,
-        Dimension::power, Dimension::thermal_conductivity, Dimension::specific_heat}) {
+        Dimension::power, Dimension::thermal_conductivity, Dimension::specific_heat,
+        Dimension::heat_transfer_coefficient, Dimension::areal_density,
+        Dimension::temperature_gradient}) {
     const std::string example(dimension_example(dimension));
     EXPECT_NO_THROW(parse_quantity(example, dimension)) << example;
   }

@@ -1,0 +1,155 @@
+// The heat side of the Simulation (DESIGN.md section 2, "Conduction", "Thermal walls",
+// "Energy"): temperature updates after the contact pass, the energy ledger, and the
+// frozen conductance network that static-bed stages step on their own.
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "sim/simulation.hpp"
+
+namespace regodem {
+
+double Simulation::particle_thermal_energy_J(std::size_t i) const {
+  const TemperatureCurve& c = materials[particles.material[i]].specific_heat_J_per_kgK;
+  return particles.mass_kg[i] * c.integral_from_zero(particles.temperature_K[i]);
+}
+
+double Simulation::thermal_energy_J() const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) sum += particle_thermal_energy_J(i);
+  for (const ThermalWall& w : wall_thermal)
+    if (w.mode == WallThermalMode::lumped) sum += w.heat_capacity_J_per_K * w.temperature_K;
+  return sum;
+}
+
+void Simulation::refresh_conductivities() {
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    particles.conductivity_W_per_mK[i] =
+        materials[particles.material[i]].conductivity_W_per_mK.at(particles.temperature_K[i]);
+}
+
+void Simulation::update_temperatures(double dt_s) {
+  // Per material: 1/c when c is constant (the common, fast case), else 0 and the
+  // enthalpy route, h += Q dt / m then T = h^-1, which conserves energy exactly.
+  const std::size_t n_materials = materials.size();
+  std::vector<double> inv_specific_heat(n_materials, 0.0);
+  std::vector<char> conductivity_varies(n_materials, 0);
+  for (std::size_t m = 0; m < n_materials; ++m) {
+    const Material& mat = materials[static_cast<MaterialIndex>(m)];
+    if (mat.specific_heat_J_per_kgK.is_constant() && mat.specific_heat_J_per_kgK.at(0.0) > 0.0)
+      inv_specific_heat[m] = 1.0 / mat.specific_heat_J_per_kgK.at(0.0);
+    conductivity_varies[m] = !mat.conductivity_W_per_mK.is_constant();
+  }
+  const std::size_t n = particles.size();
+  double* __restrict temperature = particles.temperature_K.data();
+  double* __restrict conductivity = particles.conductivity_W_per_mK.data();
+  const double* __restrict heat = particles.heat_flow_W.data();
+  const double* __restrict mass = particles.mass_kg.data();
+  const MaterialIndex* __restrict material = particles.material.data();
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048)
+  for (std::size_t i = 0; i < n; ++i) {
+    const MaterialIndex m = material[i];
+    const double energy_per_mass = heat[i] * dt_s / mass[i];
+    if (inv_specific_heat[m] > 0.0) {
+      temperature[i] += energy_per_mass * inv_specific_heat[m];
+    } else {
+      const TemperatureCurve& c = materials[m].specific_heat_J_per_kgK;
+      temperature[i] = c.inverse_integral(c.integral_from_zero(temperature[i]) + energy_per_mass);
+    }
+    if (conductivity_varies[m]) conductivity[i] = materials[m].conductivity_W_per_mK.at(temperature[i]);
+  }
+
+  for (std::size_t b = 0; b < wall_thermal.size(); ++b) {
+    ThermalWall& w = wall_thermal[b];
+    const double friction_W = wall_friction_power_W_[b];
+    const double into_wall_W = -w.heat_flow_to_particles_W + friction_W;
+    w.heat_to_particles_J += w.heat_flow_to_particles_W * dt_s;
+    w.friction_heat_J += friction_W * dt_s;
+    switch (w.mode) {
+      case WallThermalMode::adiabatic: break;
+      case WallThermalMode::lumped: w.temperature_K += into_wall_W * dt_s / w.heat_capacity_J_per_K; break;
+      case WallThermalMode::fixed:
+        // Heat a fixed wall takes leaves the system (the wall is a reservoir).
+        ledger_.boundary_heat_in_J -= into_wall_W * dt_s;
+        w.temperature_K = w.prescribed_temperature_K.at(time_s_);
+        break;
+    }
+  }
+  ledger_.friction_heat_J += friction_power_W_ * dt_s;
+}
+
+ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vector<int>& wall_boundary) {
+  ensure_forces();  // current neighbour lists
+  ThermalNetwork net;
+  const std::size_t n = particles.size();
+  net.heat_capacity_J_per_K.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    net.heat_capacity_J_per_K[i] =
+        particles.mass_kg[i] *
+        materials[particles.material[i]].specific_heat_J_per_kgK.at(particles.temperature_K[i]);
+  wall_node.assign(wall_thermal.size(), -1);
+  wall_boundary.assign(wall_thermal.size(), -1);
+  for (std::size_t b = 0; b < wall_thermal.size(); ++b) {
+    if (wall_thermal[b].mode == WallThermalMode::lumped) {
+      wall_node[b] = static_cast<int>(net.heat_capacity_J_per_K.size());
+      net.heat_capacity_J_per_K.push_back(wall_thermal[b].heat_capacity_J_per_K);
+    } else if (wall_thermal[b].mode == WallThermalMode::fixed) {
+      wall_boundary[b] = static_cast<int>(net.boundary_count++);
+    }
+  }
+  // The same conductances as the coupled contact pass: a = sqrt(R* delta_n).
+  const NeighborList& nl = neighbors_;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double ri = particles.radius_m[i];
+    const MaterialIndex mi = particles.material[i];
+    const double ki = particles.conductivity_W_per_mK[i];
+    for (std::uint32_t k = nl.offset[i]; k < nl.offset[i + 1]; ++k) {
+      const std::uint32_t j = nl.partner[k];
+      const double rj = particles.radius_m[j];
+      const double overlap = ri + rj - norm(particles.position_m[j] - particles.position_m[i]);
+      if (overlap <= 0.0) continue;
+      const double a = std::sqrt(ri * rj / (ri + rj) * overlap);
+      const double g = contact_conductance_W_per_K(conduction_parameters_(mi, particles.material[j]),
+                                                   harmonic_mean(ki, particles.conductivity_W_per_mK[j]), a);
+      if (g > 0.0) net.edges.push_back({i, j, g});
+    }
+    for (std::uint32_t k = nl.wall_offset[i]; k < nl.wall_offset[i + 1]; ++k) {
+      const WallPrimitive& wall = walls.primitives[nl.wall_primitive[k]];
+      const WallContactHeat wh = WallContactHeat::of(wall_thermal[wall.body]);
+      if (!wh.conducts) continue;
+      const WallProximity prox = closest_wall_point(wall, particles.position_m[i]);
+      if (!prox.candidate || prox.distance_m >= ri) continue;
+      const double a = std::sqrt(ri * (ri - prox.distance_m));
+      const double g =
+          contact_conductance_W_per_K(conduction_parameters_(mi, wall.material), wh.contact_conductivity(ki), a);
+      if (g <= 0.0) continue;
+      if (wall_node[wall.body] >= 0)
+        net.edges.push_back({i, static_cast<std::uint32_t>(wall_node[wall.body]), g});
+      else
+        net.boundary_links.push_back({i, static_cast<std::uint32_t>(wall_boundary[wall.body]), g});
+    }
+  }
+  return net;
+}
+
+double Simulation::thermal_stability_limit_s() {
+  std::vector<int> wall_node, wall_boundary;
+  return explicit_stability_limit_s(thermal_network(wall_node, wall_boundary));
+}
+
+void Simulation::advance_frozen(double dt_s, const std::vector<double>& boundary_heat_in_by_body_J) {
+  time_s_ += dt_s;
+  for (std::size_t b = 0; b < wall_thermal.size(); ++b) {
+    ThermalWall& w = wall_thermal[b];
+    if (w.mode != WallThermalMode::fixed) continue;
+    const double heat_J = b < boundary_heat_in_by_body_J.size() ? boundary_heat_in_by_body_J[b] : 0.0;
+    ledger_.boundary_heat_in_J += heat_J;
+    w.heat_to_particles_J += heat_J;
+    w.heat_flow_to_particles_W = heat_J / dt_s;
+    w.temperature_K = w.prescribed_temperature_K.at(time_s_);
+  }
+}
+
+}  // namespace regodem

@@ -1,0 +1,41 @@
+#include "thermal/conduction_parameters.hpp"
+
+#include <numbers>
+
+namespace regodem {
+namespace {
+
+/// 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b for the given Young's moduli.
+double effective_modulus_Pa(const Material& a, double youngs_a_Pa, const Material& b, double youngs_b_Pa) {
+  return 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / youngs_a_Pa +
+                (1.0 - b.poisson_ratio * b.poisson_ratio) / youngs_b_Pa);
+}
+
+}  // namespace
+
+ConductionParameterTable::ConductionParameterTable(const MaterialTable& materials, double time_scale_factor)
+    : n_(materials.size()), table_(n_ * n_) {
+  for (std::size_t a = 0; a < n_; ++a)
+    for (std::size_t b = 0; b < n_; ++b) {
+      const auto ia = static_cast<MaterialIndex>(a), ib = static_cast<MaterialIndex>(b);
+      const Material& ma = materials[ia];
+      const Material& mb = materials[ib];
+      const PairProperties& pair = materials.pair(ia, ib);
+      ConductionPairParameters& p = table_[a * n_ + b];
+      switch (pair.conduction) {
+        case ConductionLaw::force: {
+          const double simulated = effective_modulus_Pa(ma, ma.youngs_modulus_Pa(), mb, mb.youngs_modulus_Pa());
+          const double real = effective_modulus_Pa(ma, ma.real_youngs_modulus_Pa(), mb, mb.real_youngs_modulus_Pa());
+          p.radius_factor = 2.0 * time_scale_factor * std::cbrt(simulated / real);
+          break;
+        }
+        case ConductionLaw::radius: p.radius_factor = 2.0 * time_scale_factor; break;
+        case ConductionLaw::area:
+          p.area_factor = time_scale_factor * pair.heat_transfer_coefficient_W_per_m2K * std::numbers::pi;
+          break;
+        case ConductionLaw::none: break;
+      }
+    }
+}
+
+}  // namespace regodem

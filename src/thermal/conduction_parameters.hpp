@@ -1,0 +1,52 @@
+#pragma once
+// Contact conduction (paper Eq. 1; DESIGN.md section 2, "Conduction"): the heat flow
+// from j into i is Q_ij = G_ij (T_j - T_i). Every law in use reduces to
+//   G = radius_factor * k_c * a + area_factor * a^2,   a = sqrt(R* delta_n),
+// with per material pair factors (time-scale factor S folded in), so the contact pass
+// evaluates any mixture of laws without branching:
+//   force  (paper, EDEM): G = 2 k_c a_F, a_F = (3 F_n^e R* / (4 E*_real))^(1/3). For the
+//          Hertz force F_n^e = 4/3 E* sqrt(R*) delta^(3/2) this is a (E*/E*_real)^(1/3):
+//          radius_factor = 2 S (E*/E*_real)^(1/3).
+//   radius (LAMMPS "heat radius"): G = 2 k_c a;      radius_factor = 2 S.
+//   area   (LAMMPS "heat area"):   G = h pi a^2;     area_factor = S h pi.
+#include <cmath>
+#include <vector>
+
+#include "core/material.hpp"
+
+namespace regodem {
+
+struct ConductionPairParameters {
+  double radius_factor = 0.0;  // multiplies k_c a
+  double area_factor = 0.0;    // W/(m^2 K): multiplies a^2
+};
+
+/// The force law's contact radius from the elastic normal force (paper Eq. 1).
+inline double force_law_contact_radius_m(double elastic_normal_force_N, double effective_radius_m,
+                                         double effective_real_youngs_Pa) {
+  return std::cbrt(3.0 * elastic_normal_force_N * effective_radius_m / (4.0 * effective_real_youngs_Pa));
+}
+
+/// Conductance of one contact (W/K); a from the Hertz overlap.
+[[gnu::always_inline]] inline double contact_conductance_W_per_K(const ConductionPairParameters& p,
+                                                                 double conductivity_W_per_mK,
+                                                                 double contact_radius_m) {
+  return contact_radius_m * (p.radius_factor * conductivity_W_per_mK + p.area_factor * contact_radius_m);
+}
+
+/// k_c of two particles: the harmonic mean (k itself for one material).
+[[gnu::always_inline]] inline double harmonic_mean(double k_i, double k_j) { return 2.0 * k_i * k_j / (k_i + k_j); }
+
+/// Square table over material indices, built from the pair properties and the time-scale factor.
+class ConductionParameterTable {
+ public:
+  ConductionParameterTable() = default;
+  ConductionParameterTable(const MaterialTable& materials, double time_scale_factor);
+  const ConductionPairParameters& operator()(MaterialIndex a, MaterialIndex b) const { return table_[a * n_ + b]; }
+
+ private:
+  std::size_t n_ = 0;
+  std::vector<ConductionPairParameters> table_;
+};
+
+}  // namespace regodem

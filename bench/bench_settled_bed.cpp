@@ -9,6 +9,8 @@
 //   build/release/bench/bench_settled_bed --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
+#include <map>
+
 #include "paper_bed.hpp"
 
 namespace regodem::bench {
@@ -18,7 +20,10 @@ void BM_SettledBed(benchmark::State& state) {
   const auto count = static_cast<std::size_t>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const bool heat = state.range(2) != 0;
-  const std::vector<ParticleRecord> bed = stiffened_bed(settled_bed(count), threads);
+  // Stiffened once per bed size (on two threads) and shared by every case and repetition.
+  static std::map<std::size_t, std::vector<ParticleRecord>> stiffened;
+  if (!stiffened.count(count)) stiffened[count] = stiffened_bed(settled_bed(count), 2);
+  const std::vector<ParticleRecord>& bed = stiffened[count];
   const double rss_before = resident_bytes();
   BedOptions options;
   options.threads = threads;

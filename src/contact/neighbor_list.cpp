@@ -110,10 +110,23 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
     std::vector<std::uint32_t>& partners = thread_partners_[t];
     std::vector<std::uint32_t>& wall_hits = thread_walls_[t];
+    std::vector<std::uint32_t> thin_walls;  // the owner's disk and cylinder walls
     partners.clear();
     wall_hits.clear();
     for (std::size_t i = begin; i < end; ++i) {
       const double ri = radius[i];
+      // Walls first: a pair that touches through a thin wall (a sieve) is no pair.
+      const std::size_t first_wall = wall_hits.size();
+      thin_walls.clear();
+      for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
+        const WallProximity p = closest_wall_point(walls.primitives[w], x[i]);
+        if (p.candidate && p.distance_m < ri + skin_m) {
+          wall_hits.push_back(w);
+          if (walls.primitives[w].shape != PrimitiveShape::plane) thin_walls.push_back(w);
+        }
+      }
+      wall_offset[i + 1] = static_cast<std::uint32_t>(wall_hits.size() - first_wall);
+
       const int reach = static_cast<int>(std::ceil((2.0 * ri + skin_m) / cell));
       int cx, cy, cz;
       grid.coordinates(x[i], cx, cy, cz);
@@ -128,6 +141,13 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
             const double cutoff = ri + radius[j] + skin_m;
             const double dist2 = norm2(x[j] - x[i]);
             if (dist2 < cutoff * cutoff) {
+              // Two particles that can touch through a wall before the next rebuild are
+              // both within their radius plus the skin of it, so the wall is among the
+              // owner's thin walls.
+              bool blocked = false;
+              for (const std::uint32_t w : thin_walls)
+                blocked = blocked || segment_crosses_wall(walls.primitives[w], x[i], x[j]);
+              if (blocked) continue;
               partners.push_back(j);
               const double touch = ri + radius[j];
               if (dist2 < touch * touch) ++touching_[i];
@@ -138,12 +158,6 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
       std::sort(partners.begin() + static_cast<std::ptrdiff_t>(first), partners.end());
       offset[i + 1] = static_cast<std::uint32_t>(partners.size() - first);
 
-      const std::size_t first_wall = wall_hits.size();
-      for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
-        const WallProximity p = closest_wall_point(walls.primitives[w], x[i]);
-        if (p.candidate && p.distance_m < ri + skin_m) wall_hits.push_back(w);
-      }
-      wall_offset[i + 1] = static_cast<std::uint32_t>(wall_hits.size() - first_wall);
     }
   }
   for (std::size_t i = 0; i < n; ++i) {

@@ -1,5 +1,6 @@
 #include "geometry/wall_primitive.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace regodem {
@@ -58,7 +59,41 @@ WallProximity cylinder_point(const WallPrimitive& w, const Vec3& x) {
   return {true, rho - w.radius_m, -outward, surface};
 }
 
+bool segment_crosses_disk(const WallPrimitive& w, const Vec3& a, const Vec3& b) {
+  const double height_a = dot(a - w.point_m, w.axis), height_b = dot(b - w.point_m, w.axis);
+  if (height_a * height_b >= 0.0) return false;  // same side (or touching the plane)
+  const Vec3 crossing = a + (b - a) * (height_a / (height_a - height_b));
+  const Vec3 offset = crossing - w.point_m;
+  return norm2(offset - dot(offset, w.axis) * w.axis) <= w.radius_m * w.radius_m;
+}
+
+bool segment_crosses_cylinder(const WallPrimitive& w, const Vec3& a, const Vec3& b) {
+  const Vec3 offset_a = a - w.point_m, d = b - a;
+  const Vec3 radial_a = offset_a - dot(offset_a, w.axis) * w.axis;
+  const Vec3 radial_d = d - dot(d, w.axis) * w.axis;
+  const Vec3 radial_b = radial_a + radial_d;
+  const double r2 = w.radius_m * w.radius_m;
+  const double inside_a = norm2(radial_a) - r2, inside_b = norm2(radial_b) - r2;
+  if (inside_a * inside_b >= 0.0) return false;  // both inside or both outside the shell
+  // |radial_a + t radial_d|^2 = R^2 has exactly one root in (0, 1).
+  const double qa = norm2(radial_d), qb = 2.0 * dot(radial_a, radial_d);
+  const double root = std::sqrt(std::max(qb * qb - 4.0 * qa * inside_a, 0.0));
+  const double t1 = (-qb - root) / (2.0 * qa), t2 = (-qb + root) / (2.0 * qa);
+  const double t = (t1 >= 0.0 && t1 <= 1.0) ? t1 : t2;
+  const double along = dot(offset_a + d * t, w.axis);
+  return along >= 0.0 && along <= w.length_m;
+}
+
 }  // namespace
+
+bool segment_crosses_wall(const WallPrimitive& wall, const Vec3& a_m, const Vec3& b_m) {
+  switch (wall.shape) {
+    case PrimitiveShape::plane: return false;
+    case PrimitiveShape::disk: return segment_crosses_disk(wall, a_m, b_m);
+    case PrimitiveShape::cylinder: return segment_crosses_cylinder(wall, a_m, b_m);
+  }
+  return false;
+}
 
 WallProximity closest_wall_point(const WallPrimitive& wall, const Vec3& centre_m) {
   switch (wall.shape) {

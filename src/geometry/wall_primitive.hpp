@@ -34,4 +34,11 @@ struct WallProximity {
 
 WallProximity closest_wall_point(const WallPrimitive& wall, const Vec3& centre_m);
 
+/// Whether the segment between two sphere centres passes through the wall's surface (a
+/// disk's face, a cylinder shell between its ends). Walls have no thickness, so two
+/// particles pressed against a sieve from opposite sides overlap each other through
+/// it; such pairs are kept out of the neighbour lists, or they would push and conduct
+/// straight through the wall. A plane is one-sided: nothing lies behind it.
+bool segment_crosses_wall(const WallPrimitive& wall, const Vec3& a_m, const Vec3& b_m);
+
 }  // namespace regodem

@@ -533,7 +533,8 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                                   stage.name, stage.duration_s, heat_method_name(stage.heat_stepping),
                                   stage.thermal_time_step_s > 0.0
                                       ? fmt::format("{:.4g} s", stage.thermal_time_step_s)
-                                      : fmt::format("{:.3g} x the explicit stability limit", stage.stability_fraction)));
+                                      : fmt::format("{:.3g} x the explicit stability limit",
+                                                    stage.default_step_in_stability_limits())));
     else
       lines.push_back(stage.until_settled
                           ? fmt::format("stage '{}': until settled (kinetic energy per particle < {:.3g} J), at most "

@@ -304,8 +304,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         double heat_j = 0.0;
         if constexpr (Heat) {
           // Paper Eq. 1: Q_ij = G (T_j - T_i), G = 2 k_c a (or another law, per pair).
+          const ConductionPairParameters& pair_heat = conduction(mat_i, mat_j);
           const double conductance = contact_conductance_W_per_K(
-              conduction(mat_i, mat_j), harmonic_mean(conductivity_i, conductivity[j]), f.contact_radius_m);
+              pair_heat, pair_heat.pair_conductivity(conductivity_i, conductivity[j]), f.contact_radius_m);
           const double q = conductance * (temperature[j] - temperature_i);
           heat_i += q;
           heat_j = -q;

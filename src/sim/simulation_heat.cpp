@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "sim/simulation.hpp"
+#include "thermal/static_bed_solver.hpp"
 
 namespace regodem {
 
@@ -111,8 +112,9 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
       const double overlap = ri + rj - norm(particles.position_m[j] - particles.position_m[i]);
       if (overlap <= 0.0) continue;
       const double a = std::sqrt(ri * rj / (ri + rj) * overlap);
-      const double g = contact_conductance_W_per_K(conduction_parameters_(mi, particles.material[j]),
-                                                   harmonic_mean(ki, particles.conductivity_W_per_mK[j]), a);
+      const ConductionPairParameters& pair_heat = conduction_parameters_(mi, particles.material[j]);
+      const double g = contact_conductance_W_per_K(
+          pair_heat, pair_heat.pair_conductivity(ki, particles.conductivity_W_per_mK[j]), a);
       if (g > 0.0) net.edges.push_back({i, j, g});
     }
     for (std::uint32_t k = nl.wall_offset[i]; k < nl.wall_offset[i + 1]; ++k) {
@@ -136,7 +138,8 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
 
 double Simulation::thermal_stability_limit_s() {
   std::vector<int> wall_node, wall_boundary;
-  return explicit_stability_limit_s(thermal_network(wall_node, wall_boundary));
+  return StaticBedSolver(StaticBedMethod::explicit_euler, thermal_network(wall_node, wall_boundary))
+      .stability_limit_s();
 }
 
 void Simulation::advance_frozen(double dt_s, const std::vector<double>& boundary_heat_in_by_body_J) {

@@ -36,6 +36,12 @@ struct Stage {
   double thermal_time_step_s = 0.0;  // 0: stability_fraction x the explicit limit
   double stability_fraction = 0.5;
   bool freezes_mechanics() const { return heat_stepping != HeatStepping::coupled; }
+  /// The default heat step of a static-bed stage, in explicit stability limits: the
+  /// fraction for explicit stepping; implicit methods are stable at any step and by
+  /// default take 10 times that, still resolving the bed's slow, diffusive modes.
+  double default_step_in_stability_limits() const {
+    return stability_fraction * (heat_stepping == HeatStepping::static_explicit ? 1.0 : 10.0);
+  }
 };
 
 struct StagePlan {

@@ -20,10 +20,6 @@ ThermalNetwork network_of(Simulation& sim, std::vector<int>& wall_node, std::vec
   return sim.thermal_network(wall_node, wall_boundary);
 }
 
-// Implicit methods are stable at any step; by default they take this many explicit
-// limits per step, still well resolving the bed's slow (diffusive) modes.
-constexpr double kImplicitDefaultLimits = 10.0;
-
 }  // namespace
 
 StaticHeatStepper::StaticHeatStepper(Simulation& sim, const Stage& stage)
@@ -38,7 +34,7 @@ StaticHeatStepper::StaticHeatStepper(Simulation& sim, const Stage& stage)
           "(min m c / sum G over the bed); use at most that, or an implicit heat_stepping",
           stage.name, time_step_s_, stability_limit_s_));
   } else {
-    time_step_s_ = stage.stability_fraction * stability_limit_s_ * (is_explicit ? 1.0 : kImplicitDefaultLimits);
+    time_step_s_ = stage.default_step_in_stability_limits() * stability_limit_s_;
   }
   if (!std::isfinite(time_step_s_)) time_step_s_ = stage.duration_s > 0.0 ? stage.duration_s : 1.0;  // nothing conducts
   for (std::size_t m = 0; m < sim.materials.size(); ++m) {

@@ -22,6 +22,10 @@ ConductionParameterTable::ConductionParameterTable(const MaterialTable& material
       const Material& mb = materials[ib];
       const PairProperties& pair = materials.pair(ia, ib);
       ConductionPairParameters& p = table_[a * n_ + b];
+      if (ma.conductivity_W_per_mK.is_constant() && mb.conductivity_W_per_mK.is_constant()) {
+        const double k_a = ma.conductivity_W_per_mK.at(0.0), k_b = mb.conductivity_W_per_mK.at(0.0);
+        p.constant_pair_conductivity_W_per_mK = k_a + k_b > 0.0 ? harmonic_mean(k_a, k_b) : 0.0;
+      }
       switch (pair.conduction) {
         case ConductionLaw::force: {
           const double simulated = effective_modulus_Pa(ma, ma.youngs_modulus_Pa(), mb, mb.youngs_modulus_Pa());

@@ -19,6 +19,15 @@ namespace regodem {
 struct ConductionPairParameters {
   double radius_factor = 0.0;  // multiplies k_c a
   double area_factor = 0.0;    // W/(m^2 K): multiplies a^2
+  // k_c of two particles of these materials when both conductivities are constant (the
+  // common case: no per-contact division, no per-particle loads); < 0 when either is a
+  // table, and k_c comes from the particles' current conductivities.
+  double constant_pair_conductivity_W_per_mK = -1.0;
+
+  [[gnu::always_inline]] double pair_conductivity(double k_i, double k_j) const {
+    return constant_pair_conductivity_W_per_mK >= 0.0 ? constant_pair_conductivity_W_per_mK
+                                                        : 2.0 * k_i * k_j / (k_i + k_j);
+  }
 };
 
 /// The force law's contact radius from the elastic normal force (paper Eq. 1).
@@ -35,7 +44,7 @@ inline double force_law_contact_radius_m(double elastic_normal_force_N, double e
 }
 
 /// k_c of two particles: the harmonic mean (k itself for one material).
-[[gnu::always_inline]] inline double harmonic_mean(double k_i, double k_j) { return 2.0 * k_i * k_j / (k_i + k_j); }
+inline double harmonic_mean(double k_i, double k_j) { return 2.0 * k_i * k_j / (k_i + k_j); }
 
 /// Square table over material indices, built from the pair properties and the time-scale factor.
 class ConductionParameterTable {

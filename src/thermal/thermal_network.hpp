@@ -28,8 +28,4 @@ struct ThermalNetwork {
   std::size_t node_count() const { return heat_capacity_J_per_K.size(); }
 };
 
-/// Stability limit of explicit (forward Euler) stepping: min_i C_i / sum_j G_ij over
-/// edges and links (DESIGN.md section 2, "Thermal stepping"); +inf if nothing conducts.
-double explicit_stability_limit_s(const ThermalNetwork& network);
-
 }  // namespace regodem

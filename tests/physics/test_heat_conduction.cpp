@@ -217,9 +217,9 @@ TEST(HeatConduction, LoadedChainReachesTheSeriesConductanceSteadyState) {
   EXPECT_NEAR(sim.energy_imbalance_J() / (flow * sim.time_s()), 0.0, 1e-9);
 }
 
-// A lumped disk between particle A (above) and B (below, smaller, beside A so that the
-// two do not touch through the zero-thickness disk), each pressed on it by F from an
-// adiabatic plane: the three temperatures follow the three-body ODE
+// A lumped disk between particle A (above) and B (below, smaller, right under A: they
+// overlap each other through the zero-thickness disk, and the neighbour list must keep
+// them apart), each pressed on it by F from an adiabatic plane: the three temperatures follow the three-body ODE
 // C_A T_A' = G_A (T_w - T_A), C_B T_B' = G_B (T_w - T_B), C_w T_w' = -(...), with
 // G = 2 lambda_w a S (the wall's own conductivity, as the paper's sieve). Reference: RK4
 // at 1/20 of the simulation's step. Tolerance 0.5 % of the initial spread (200 K).
@@ -250,7 +250,7 @@ TEST(HeatConduction, LumpedWallBetweenTwoParticlesFollowsTheThreeBodySolution) {
   sieve.conductivity_W_per_mK = lambda_wall;
   Simulation sim(one_material(m), walls, heat_settings(dt, scale), {sieve, ThermalWall{}, ThermalWall{}});
   sim.add_particle(sphere({0, 0, z_a}, {}, radius_a, m.density, 300.0));
-  sim.add_particle(sphere({2.0 * kRadius, 0, z_b}, {}, radius_b, m.density, 150.0));
+  sim.add_particle(sphere({0, 0, z_b}, {}, radius_b, m.density, 150.0));
   const double energy_before = sim.thermal_energy_J();
 
   // Reference: RK4 on y = (T_A, T_B, T_w).
@@ -283,6 +283,7 @@ TEST(HeatConduction, LumpedWallBetweenTwoParticlesFollowsTheThreeBodySolution) {
     EXPECT_NEAR(sim.wall_thermal[0].temperature_K, y[2], 0.005 * 200.0) << "at t = " << check_at;
     // Closed system: particles + lumped wall keep their energy to round-off.
     EXPECT_NEAR(sim.energy_imbalance_J() / energy_before, 0.0, 1e-12);
+    EXPECT_EQ(sim.contact_statistics().particle_contacts, 0u);
   }
 }
 

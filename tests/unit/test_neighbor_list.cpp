@@ -90,5 +90,44 @@ TEST(NeighborList, HistoryFollowsIdsThroughAReorderingRebuild) {
   EXPECT_EQ(checked, written.size());
 }
 
+
+/// Pairs in the list after one build of the given particles and walls.
+std::size_t pairs_listed(const std::vector<std::pair<Vec3, double>>& spheres, const WallSet& walls) {
+  ParticleStore store;
+  for (const auto& [x, r] : spheres) {
+    NewParticle p;
+    p.position_m = x;
+    p.radius_m = r;
+    p.density_kg_per_m3 = 3000.0;
+    store.add(p);
+  }
+  NeighborList list;
+  const CellGrid grid({-0.02, -0.02, -0.02}, {0.02, 0.02, 0.02}, 0.7e-3, 1e6);
+  list.rebuild(store, walls, grid, 0.05e-3, 1);
+  return list.pair_count();
+}
+
+// Two particles pressed against a thin wall from opposite sides overlap each other
+// through it: the pair is left out, or they would push and conduct through the wall.
+// Beside a disk's rim, where nothing lies between them, they stay a pair.
+TEST(NeighborList, PairsAcrossADiskOrASieveShellAreLeftOut) {
+  const double r = 0.3e-3, big = 1.2e-3, overlap = 1e-6;
+  WallSet disk;
+  disk.add_disk(disk.add_body("sieve", {}), {0, 0, 0}, {0, 0, 1}, 5e-3, 0);
+  EXPECT_EQ(pairs_listed({{{0, 0, r - overlap}, r}, {{1e-5, 0, -(r - overlap)}, r}}, disk), 0u);
+  EXPECT_EQ(pairs_listed({{{0, 0, big - overlap}, big}, {{0, 0, -(r - overlap)}, r}}, disk), 0u);
+  EXPECT_EQ(pairs_listed({{{6e-3, 0, r - overlap}, r}, {{6e-3, 0, -(r - overlap)}, r}}, disk), 1u);
+  EXPECT_EQ(pairs_listed({{{0, 0, r - overlap}, r}, {{0, 0, -(r - overlap)}, r}}, WallSet{}), 1u);
+
+  // A sieve segment: shell of radius 11 mm, a fine particle inside, a coarse one outside.
+  WallSet sieve;
+  sieve.add_sieve_segment(sieve.add_body("sieve[1]", {}), {0, 0, -6e-3}, {0, 0, 1}, 11e-3, 12e-3, true, true,
+                          false, 0);
+  EXPECT_EQ(pairs_listed({{{11e-3 - r + overlap, 0, 0}, r}, {{11e-3 + big - overlap, 0, 0}, big}}, sieve), 0u);
+  // Side by side inside the shell they touch as usual.
+  EXPECT_EQ(pairs_listed({{{11e-3 - r + overlap, 0, 0}, r}, {{11e-3 - r + overlap, 2 * r - overlap, 0}, r}}, sieve),
+            1u);
+}
+
 }  // namespace
 }  // namespace regodem

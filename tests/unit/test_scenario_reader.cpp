@@ -238,8 +238,11 @@ TEST(ScenarioReader, DemoScenarioReads) {
   EXPECT_DOUBLE_EQ(spec.insertions[0].sizes.at(0).radius_m, 0.3e-3);
   EXPECT_DOUBLE_EQ(spec.insertions[1].sizes.at(0).radius_m, 1.2e-3);
   EXPECT_EQ(spec.insertions[1].region.shape, RegionShape::annulus);
-  ASSERT_EQ(spec.stages.size(), 2u);
+  ASSERT_EQ(spec.stages.size(), 3u);
   EXPECT_EQ(spec.stages[1].end, StageEnd::settled);
+  EXPECT_EQ(spec.stages[2].heat_stepping, ThermalStepping::static_crank_nicolson);
+  EXPECT_TRUE(spec.heat.enabled);
+  EXPECT_DOUBLE_EQ(spec.insertions[0].temperature->value_K, 77.15);
 }
 
 TEST(ScenarioReader, FixtureDirectoryHasAValidMinimalScenario) {

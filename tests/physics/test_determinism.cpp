@@ -1,6 +1,7 @@
 // Results are deterministic for a fixed seed and thread count: two runs of the same
-// collapsing, rotating, wall-bounded packing on two threads (force sums split between
-// threads and merged in a fixed order) are bit-for-bit identical.
+// collapsing, rotating, wall-bounded packing on two threads (force and heat sums split
+// between threads and merged in a fixed order) are bit-for-bit identical, positions and
+// temperatures (heat on, friction heating on, a lumped cup).
 #include <gtest/gtest.h>
 
 #include "core/rng.hpp"
@@ -9,7 +10,13 @@
 namespace regodem::testing {
 namespace {
 
-std::vector<Vec3> run_once() {
+struct State {
+  std::vector<Vec3> position;
+  std::vector<double> temperature;
+  double cup_temperature;
+};
+
+State run_once() {
   SphereMaterial m;
   m.restitution = 0.3;
   m.sliding_friction = 0.5;
@@ -20,27 +27,39 @@ std::vector<Vec3> run_once() {
   walls.add_cylinder(walls.add_body("cup", {}), {0, 0, -0.01}, {0, 0, 1}, 0.006, 0.03, true, false, true, false, 0);
   SimulationSettings settings = settings_for(radius, dt, {0, 0, -9.81}, 0.03, 2);
   settings.min_particles_per_thread = 100;  // make both threads work on this small system
-  Simulation sim(one_material(m), walls, settings);
+  settings.heat.enabled = true;
+  settings.heat.time_scale_factor = 1e4;
+  settings.heat.friction_heating = true;
+  ThermalWall cup;
+  cup.mode = WallThermalMode::lumped;
+  cup.temperature_K = 400.0;
+  cup.heat_capacity_J_per_K = 0.01;
+  Simulation sim(one_material(m), walls, settings, {cup});
   Rng rng(17);
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j)
       for (int k = 0; k < 10; ++k) {
         const Vec3 x{(i - 3.5) * 1.0e-3, (j - 3.5) * 1.0e-3, -0.0094 + k * 1.0e-3};
         NewParticle p = sphere(x, {rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05)}, radius * rng.uniform(0.97, 1.0),
-                               m.density);
+                               m.density, rng.uniform(100.0, 300.0));
         p.angular_velocity_rad_per_s = {rng.uniform(-10, 10), rng.uniform(-10, 10), rng.uniform(-10, 10)};
         sim.add_particle(p);
       }
   sim.advance(8000);
   EXPECT_GT(sim.contact_statistics().particle_contacts, 100u);
   EXPECT_GT(sim.neighbor_list().rebuild_count(), 1u);
-  return sim.particles.position_m;
+  return {sim.particles.position_m, sim.particles.temperature_K, sim.wall_thermal[0].temperature_K};
 }
 
 TEST(Determinism, SameStartAndThreadsGiveIdenticalState) {
-  const std::vector<Vec3> first = run_once(), second = run_once();
-  ASSERT_EQ(first.size(), second.size());
-  for (std::size_t i = 0; i < first.size(); ++i) ASSERT_EQ(first[i], second[i]) << "particle " << i;
+  const State first = run_once(), second = run_once();
+  ASSERT_EQ(first.position.size(), second.position.size());
+  for (std::size_t i = 0; i < first.position.size(); ++i) {
+    ASSERT_EQ(first.position[i], second.position[i]) << "particle " << i;
+    ASSERT_EQ(first.temperature[i], second.temperature[i]) << "particle " << i;
+  }
+  EXPECT_EQ(first.cup_temperature, second.cup_temperature);
+  EXPECT_NE(first.cup_temperature, 400.0);  // heat did flow
 }
 
 }  // namespace

@@ -287,6 +287,43 @@ TEST(HeatConduction, LumpedWallBetweenTwoParticlesFollowsTheThreeBodySolution) {
   }
 }
 
+// A specific heat that triples between 100 K and 350 K (regolith-like table): two equal
+// spheres at 300 K and 100 K end at the temperature T_f of equal enthalpy,
+// 2 h(T_f) = h(300) + h(100) (h = integral of c), not at the mean 200 K; energy is
+// kept to 1e-12 throughout (the enthalpy stepping). T_f within 0.01 K after 12 tau.
+TEST(HeatConduction, TemperatureDependentSpecificHeatConservesEnthalpy) {
+  const SphereMaterial m = grain();
+  const double dt = mechanical_step(m);
+  const TemperatureCurve c({100.0, 200.0, 350.0}, {300.0, 600.0, 900.0});
+  MaterialTable materials = one_material(m);
+  Material grain_with_table = materials[0];
+  grain_with_table.specific_heat_J_per_kgK = c;
+  MaterialTable table;
+  table.add(grain_with_table);
+  table.set_pair(0, 0, materials.pair(0, 0));
+  const double e_star = effective_youngs_modulus(m);
+  const double pair_overlap = hertz_overlap(kForce, e_star, 0.5 * kRadius);
+  const double wall_overlap = hertz_overlap(kForce, e_star, kRadius);
+  const double a = contact_radius(m, kForce, 0.5 * kRadius);
+  const double tau_s1 = sphere_mass(m, kRadius) * 900.0 / (4.0 * m.conductivity * a);  // the slowest, at c = 900
+  const double scale = scale_for(tau_s1, dt, 500.0);
+  const double x = kRadius - 0.5 * pair_overlap;
+  WallSet walls;
+  walls.add_plane(walls.add_body("left", {}), {-x - kRadius + wall_overlap, 0, 0}, {1, 0, 0}, 0);
+  walls.add_plane(walls.add_body("right", {}), {x + kRadius - wall_overlap, 0, 0}, {-1, 0, 0}, 0);
+  Simulation sim(table, walls, heat_settings(dt, scale));
+  sim.add_particle(sphere({-x, 0, 0}, {}, kRadius, m.density, 300.0));
+  sim.add_particle(sphere({x, 0, 0}, {}, kRadius, m.density, 100.0));
+  const double energy_before = sim.thermal_energy_J();
+  sim.advance(6000);
+  const double final_enthalpy = 0.5 * (c.integral_from_zero(300.0) + c.integral_from_zero(100.0));
+  const double expected = c.inverse_integral(final_enthalpy);
+  EXPECT_GT(expected, 200.0 + 20.0);  // far from the arithmetic mean
+  EXPECT_NEAR(sim.particles.temperature_K[0], expected, 0.01);
+  EXPECT_NEAR(sim.particles.temperature_K[1], expected, 0.01);
+  EXPECT_NEAR(sim.energy_imbalance_J() / energy_before, 0.0, 1e-12);
+}
+
 // Adiabatic walls pass no heat: a sphere resting on one keeps its temperature exactly.
 TEST(HeatConduction, AdiabaticWallPassesNoHeat) {
   const SphereMaterial m = grain();

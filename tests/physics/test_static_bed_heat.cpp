@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "physics_fixtures.hpp"
+#include "sim/stage_runner.hpp"
 #include "sim/static_heat_stepper.hpp"
 
 namespace regodem::testing {
@@ -118,6 +119,34 @@ TEST(StaticBedHeat, ImplicitAndExplicitSolutionsAgreeOnABedHeatedFromOneSide) {
     EXPECT_NEAR(results[2][i], results[0][i], 0.5) << "Crank-Nicolson, particle " << i;
   }
   EXPECT_GT(largest_rise, 100.0);  // the comparison is over a real heating
+}
+
+
+// A coupled stage whose time-scale factor pushes the heat step past the explicit limit
+// min m c / sum G is refused before it runs, with the largest stable S in the message;
+// at a stable S the same plan runs.
+TEST(StaticBedHeat, CoupledStageRefusesAnUnstableTimeScaleFactor) {
+  const double dt = 0.2 * rayleigh_time_s(kRadius, 3000.0, 3.0e7, 0.25);
+  class Quiet : public RunObserver {};
+  Quiet quiet;
+  std::atomic<bool> stop{false};
+  for (const double scale : {1e9, 1.0}) {
+    Simulation sim = lattice_bed(3, 3, 3, scale, dt);
+    StagePlan plan;
+    Stage heat;
+    heat.name = "heat";
+    heat.duration_s = 10 * dt;
+    plan.stages.push_back(heat);
+    const RunOutcome outcome = run_stages(sim, plan, quiet, stop);
+    if (scale > 1.0) {
+      EXPECT_FALSE(outcome.completed);
+      EXPECT_NE(outcome.message.find("heat stability limit"), std::string::npos) << outcome.message;
+      EXPECT_NE(outcome.message.find("use S below"), std::string::npos) << outcome.message;
+      EXPECT_EQ(sim.step_count(), 0u);
+    } else {
+      EXPECT_TRUE(outcome.completed) << outcome.message;
+    }
+  }
 }
 
 }  // namespace

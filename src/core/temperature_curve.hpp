@@ -7,30 +7,26 @@
 // For specific heat the curve also gives the specific enthalpy h(T) = integral of c
 // from 0 K (piecewise quadratic) and its inverse: temperatures then advance by adding
 // energy, h += Q dt / m, and energy is conserved however strongly c varies.
-#include <cstddef>
 #include <vector>
+
+#include "core/piecewise_linear.hpp"
 
 namespace regodem {
 
 class TemperatureCurve {
  public:
-  TemperatureCurve() = default;
+  TemperatureCurve() : TemperatureCurve(0.0) {}
   /// A constant value.
   explicit TemperatureCurve(double value);
   /// A table; throws InputError unless temperatures strictly increase and every
-  /// entry is finite. At least one row.
+  /// entry is finite. At least one row; one row is a constant.
   TemperatureCurve(std::vector<double> temperature_K, std::vector<double> value);
 
-  bool is_constant() const { return temperature_K_.size() <= 1; }
+  bool is_constant() const { return table_.rows() <= 1; }
   /// Value at T (the constant, or the table interpolated; clamped at the ends).
-  double at(double temperature_K) const {
-    if (is_constant()) return value_.empty() ? 0.0 : value_[0];
-    return interpolate(temperature_K);
-  }
-  double min_value() const;
-  double max_value() const;
-  const std::vector<double>& table_temperatures_K() const { return temperature_K_; }
-  const std::vector<double>& table_values() const { return value_; }
+  double at(double temperature_K) const { return table_.at(temperature_K); }
+  const std::vector<double>& table_temperatures_K() const { return table_.xs(); }
+  const std::vector<double>& table_values() const { return table_.ys(); }
 
   /// Integral of the curve from 0 K to T (for a specific heat: J/kg).
   double integral_from_zero(double temperature_K) const;
@@ -38,11 +34,7 @@ class TemperatureCurve {
   double inverse_integral(double integral) const;
 
  private:
-  double interpolate(double temperature_K) const;
-  std::size_t segment(double temperature_K) const;  // index k with T_k <= T < T_{k+1}
-
-  std::vector<double> temperature_K_;
-  std::vector<double> value_;
+  PiecewiseLinear table_;
   std::vector<double> integral_at_row_;  // integral_from_zero at each table temperature
 };
 

@@ -3,23 +3,25 @@
 // and held at the first and last value outside the table (a fixed-temperature wall).
 #include <vector>
 
+#include "core/piecewise_linear.hpp"
+
 namespace regodem {
 
 class TimeTable {
  public:
   TimeTable() = default;
-  explicit TimeTable(double constant) : time_s_{0.0}, value_{constant} {}
+  explicit TimeTable(double constant) : table_({0.0}, {constant}, "times", "s") {}
   /// Throws InputError unless times strictly increase, values are finite and there is a row.
-  TimeTable(std::vector<double> time_s, std::vector<double> value);
+  TimeTable(std::vector<double> time_s, std::vector<double> value)
+      : table_(std::move(time_s), std::move(value), "times", "s") {}
 
-  double at(double time_s) const;
-  bool empty() const { return value_.empty(); }
-  const std::vector<double>& times_s() const { return time_s_; }
-  const std::vector<double>& values() const { return value_; }
+  double at(double time_s) const { return table_.at(time_s); }
+  bool empty() const { return table_.empty(); }
+  const std::vector<double>& times_s() const { return table_.xs(); }
+  const std::vector<double>& values() const { return table_.ys(); }
 
  private:
-  std::vector<double> time_s_;
-  std::vector<double> value_;
+  PiecewiseLinear table_;
 };
 
 }  // namespace regodem

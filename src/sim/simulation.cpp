@@ -60,6 +60,7 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
   wall_friction_by_thread_.assign(settings_.threads, std::vector<double>(n_bodies));
   friction_power_by_thread_.assign(settings_.threads, 0.0);
   wall_friction_power_W_.assign(n_bodies, 0.0);
+  refresh_thermal_material_cache();
   for (ThermalWall& w : wall_thermal) {
     if (w.mode == WallThermalMode::fixed) w.temperature_K = w.prescribed_temperature_K.at(0.0);
     if (w.mode == WallThermalMode::lumped) ledger_.reference_energy_J += w.heat_capacity_J_per_K * w.temperature_K;
@@ -76,6 +77,7 @@ void Simulation::add_particle(const NewParticle& p) {
 void Simulation::refresh_contact_parameters() {
   contact_parameters_ = ContactParameterTable(materials);
   conduction_parameters_ = ConductionParameterTable(materials, settings_.heat.time_scale_factor);
+  refresh_thermal_material_cache();
   forces_current_ = false;
 }
 

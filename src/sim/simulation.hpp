@@ -122,6 +122,7 @@ class Simulation {
   void compute_forces_and_heat(double slip_time_s);
   /// Advances particle and wall temperatures by dt with the heat flows of the last pass.
   void update_temperatures(double dt_s);
+  void refresh_thermal_material_cache();
   double particle_thermal_energy_J(std::size_t i) const;
   [[noreturn]] void report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const;
 
@@ -149,6 +150,8 @@ class Simulation {
   std::vector<double> friction_power_by_thread_;
   std::vector<double> wall_friction_power_W_;  // summed over threads, last pass
   double friction_power_W_ = 0.0;              // all sliding contacts, last pass
+  std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0
+  std::vector<char> conductivity_varies_;      // per material: k is a table
 };
 
 }  // namespace regodem

@@ -31,18 +31,23 @@ void Simulation::refresh_conductivities() {
         materials[particles.material[i]].conductivity_W_per_mK.at(particles.temperature_K[i]);
 }
 
-void Simulation::update_temperatures(double dt_s) {
+void Simulation::refresh_thermal_material_cache() {
   // Per material: 1/c when c is constant (the common, fast case), else 0 and the
   // enthalpy route, h += Q dt / m then T = h^-1, which conserves energy exactly.
   const std::size_t n_materials = materials.size();
-  std::vector<double> inv_specific_heat(n_materials, 0.0);
-  std::vector<char> conductivity_varies(n_materials, 0);
+  inv_specific_heat_.assign(n_materials, 0.0);
+  conductivity_varies_.assign(n_materials, 0);
   for (std::size_t m = 0; m < n_materials; ++m) {
     const Material& mat = materials[static_cast<MaterialIndex>(m)];
     if (mat.specific_heat_J_per_kgK.is_constant() && mat.specific_heat_J_per_kgK.at(0.0) > 0.0)
-      inv_specific_heat[m] = 1.0 / mat.specific_heat_J_per_kgK.at(0.0);
-    conductivity_varies[m] = !mat.conductivity_W_per_mK.is_constant();
+      inv_specific_heat_[m] = 1.0 / mat.specific_heat_J_per_kgK.at(0.0);
+    conductivity_varies_[m] = !mat.conductivity_W_per_mK.is_constant();
   }
+}
+
+void Simulation::update_temperatures(double dt_s) {
+  const double* __restrict inv_specific_heat = inv_specific_heat_.data();
+  const char* __restrict conductivity_varies = conductivity_varies_.data();
   const std::size_t n = particles.size();
   double* __restrict temperature = particles.temperature_K.data();
   double* __restrict conductivity = particles.conductivity_W_per_mK.data();

@@ -278,7 +278,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         const double sum_r = ri + rj;
         const double dist2 = norm2(d);
         if (dist2 >= sum_r * sum_r) {
-          history[k] = {};
+          // Most list entries are not touching and already cleared: reading instead of
+          // storing keeps their cache lines clean (no write-back).
+          if (history[k] != Vec3{}) history[k] = {};
           continue;
         }
         ++particle_contacts;
@@ -331,7 +333,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         const WallPrimitive& wall = primitives[wall_primitive[k]];
         const WallProximity prox = closest_wall_point(wall, xi);
         if (!prox.candidate || prox.distance_m >= ri) {
-          wall_history[k] = {};
+          if (wall_history[k] != Vec3{}) wall_history[k] = {};
           continue;
         }
         ++wall_contacts;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/text_words.hpp"
 
 namespace regodem {
 namespace {
@@ -81,17 +82,6 @@ TriangleMesh read_binary(std::string_view data, const std::string& path) {
 }
 
 // ---------------------------------------------------------------------------------
-std::vector<std::string_view> split_words(std::string_view line) {
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i > start) words.push_back(line.substr(start, i - start));
-  }
-  return words;
-}
 
 std::string lower(std::string_view word) {
   std::string out(word);
@@ -100,12 +90,6 @@ std::string lower(std::string_view word) {
 }
 
 /// Parses the whole word as a double; false if it is not a number.
-bool parse_double(std::string_view word, double& value) {
-  if (word.size() > 1 && word[0] == '+') word.remove_prefix(1);
-  const char* end = word.data() + word.size();
-  const auto [ptr, ec] = std::from_chars(word.data(), end, value);
-  return ec == std::errc() && ptr == end;
-}
 
 TriangleMesh read_ascii(std::string_view data, const std::string& path) {
   enum class State { outside, in_solid, in_facet };

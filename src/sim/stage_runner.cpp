@@ -101,6 +101,7 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
     if (conducting_wall(sim.wall_thermal[b])) {
       columns.push_back({sim.walls.bodies[b].name + ".temperature", "K"});
       columns.push_back({sim.walls.bodies[b].name + ".heat_flow", "W"});  // into the particles
+      columns.push_back({sim.walls.bodies[b].name + ".heat_to_particles", "J"});  // cumulative
     }
   return columns;
 }
@@ -140,7 +141,8 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
                          ledger.boundary_heat_in_J, ledger.friction_heat_J,
                          energy != 0.0 ? imbalance / std::abs(energy) : 0.0});
   for (const ThermalWall& w : sim.wall_thermal)
-    if (conducting_wall(w)) row.insert(row.end(), {w.temperature_K, w.heat_flow_to_particles_W});
+    if (conducting_wall(w))
+      row.insert(row.end(), {w.temperature_K, w.heat_flow_to_particles_W, w.heat_to_particles_J});
   return row;
 }
 

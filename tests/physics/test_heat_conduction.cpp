@@ -215,6 +215,10 @@ TEST(HeatConduction, LoadedChainReachesTheSeriesConductanceSteadyState) {
   EXPECT_NEAR(-sim.wall_thermal[1].heat_flow_to_particles_W / flow, 1.0, 1e-3);
   // What came in through the walls is in the particles (1e-9 of the throughput).
   EXPECT_NEAR(sim.energy_imbalance_J() / (flow * sim.time_s()), 0.0, 1e-9);
+  // The walls' running totals add up to the ledger's boundary heat (1e-12 relative).
+  EXPECT_NEAR((sim.wall_thermal[0].heat_to_particles_J + sim.wall_thermal[1].heat_to_particles_J) /
+                  sim.thermal_ledger().boundary_heat_in_J,
+              1.0, 1e-12);
 }
 
 // A lumped disk between particle A (above) and B (below, smaller, right under A: they

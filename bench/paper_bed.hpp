@@ -44,14 +44,7 @@ inline ScenarioSpec soft_pour_spec(std::size_t count, double height, double barr
   spec.seed = 11;
   spec.domain.min_m = {-barrel_radius_m - 1e-3, -barrel_radius_m - 1e-3, -1e-3};
   spec.domain.max_m = {barrel_radius_m + 1e-3, barrel_radius_m + 1e-3, height + 2e-3};
-  {
-    MaterialSpec material;
-    material.name = "regolith";
-    material.density_kg_per_m3 = kDensity;
-    material.shear_modulus_Pa = 3.0e6;
-    material.poisson_ratio = kPoisson;
-    spec.materials.push_back(material);
-  }
+  spec.materials.push_back(elastic_material("regolith", kDensity, 3.0e6, kPoisson));
   InteractionSpec pair;
   pair.material_a = pair.material_b = "regolith";
   pair.restitution = 0.24;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/vec3.hpp"
@@ -42,6 +43,18 @@ struct MaterialSpec {
   double real_shear_modulus_Pa = 0.0;  // 0: none (conduction uses shear_modulus_Pa)
   SourceLocation where;
 };
+
+/// A material with elastic constants only (no thermal properties): what programs that
+/// build a ScenarioSpec in code (tests, benchmarks) most often need.
+inline MaterialSpec elastic_material(std::string name, double density_kg_per_m3, double shear_modulus_Pa,
+                                     double poisson_ratio) {
+  MaterialSpec m;
+  m.name = std::move(name);
+  m.density_kg_per_m3 = density_kg_per_m3;
+  m.shear_modulus_Pa = shear_modulus_Pa;
+  m.poisson_ratio = poisson_ratio;
+  return m;
+}
 
 enum class ConductionLawSpec { force, radius, area, none };
 

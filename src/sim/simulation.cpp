@@ -232,9 +232,11 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   double* __restrict heat = particles.heat_flow_W.data();
   const bool friction_heating = settings_.heat.friction_heating;
   const double wall_partition = settings_.heat.friction_partition;  // the particle's share at a wall
-  std::vector<WallContactHeat> wall_heat_terms(Heat ? n_bodies : 0);
-  for (std::size_t b = 0; b < wall_heat_terms.size(); ++b) wall_heat_terms[b] = WallContactHeat::of(wall_thermal[b]);
-  const WallContactHeat* wall_heat = wall_heat_terms.data();
+  // Taken once per pass into a member buffer: no allocation per step.
+  wall_contact_heat_.resize(Heat ? n_bodies : 0);
+  for (std::size_t b = 0; b < wall_contact_heat_.size(); ++b)
+    wall_contact_heat_[b] = WallContactHeat::of(wall_thermal[b]);
+  const WallContactHeat* wall_heat = wall_contact_heat_.data();
 
 #pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
   {

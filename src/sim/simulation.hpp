@@ -152,6 +152,7 @@ class Simulation {
   double friction_power_W_ = 0.0;              // all sliding contacts, last pass
   std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0
   std::vector<char> conductivity_varies_;      // per material: k is a table
+  std::vector<WallContactHeat> wall_contact_heat_;  // per wall body, taken at each contact pass
 };
 
 }  // namespace regodem

@@ -25,14 +25,7 @@ ScenarioSpec cylinder_pour(double cylinder_radius, double height, double shear_m
   spec.seed = 3;
   spec.domain.min_m = {-cylinder_radius - 0.002, -cylinder_radius - 0.002, -0.002};
   spec.domain.max_m = {cylinder_radius + 0.002, cylinder_radius + 0.002, height + 0.01};
-  {
-    MaterialSpec material;
-    material.name = "grain";
-    material.density_kg_per_m3 = 2500.0;
-    material.shear_modulus_Pa = shear_modulus;
-    material.poisson_ratio = 0.25;
-    spec.materials.push_back(material);
-  }
+  spec.materials.push_back(elastic_material("grain", 2500.0, shear_modulus, 0.25));
   InteractionSpec pair;
   pair.material_a = pair.material_b = "grain";
   pair.restitution = 0.5;

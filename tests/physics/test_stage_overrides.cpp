@@ -44,14 +44,7 @@ TEST(StageOverrides, FrictionOffOnlyDuringItsStage) {
   spec.domain.max_m = {0.5, 0.01, 0.01};
   spec.time_step_s = 0.0;
   spec.rayleigh_fraction = 0.05;
-  {
-    MaterialSpec material;
-    material.name = "grain";
-    material.density_kg_per_m3 = 2500.0;
-    material.shear_modulus_Pa = 1e8;
-    material.poisson_ratio = 0.25;
-    spec.materials.push_back(material);
-  }
+  spec.materials.push_back(elastic_material("grain", 2500.0, 1e8, 0.25));
   InteractionSpec pair;
   pair.material_a = pair.material_b = "grain";
   pair.restitution = 0.5;

@@ -92,14 +92,7 @@ ScenarioSpec box_scenario() {
   spec.gravity_m_per_s2 = {};
   spec.domain.min_m = {-0.01, -0.01, -0.01};
   spec.domain.max_m = {0.01, 0.01, 0.01};
-  {
-    MaterialSpec material;
-    material.name = "grain";
-    material.density_kg_per_m3 = 2500.0;
-    material.shear_modulus_Pa = 1e8;
-    material.poisson_ratio = 0.25;
-    spec.materials.push_back(material);
-  }
+  spec.materials.push_back(elastic_material("grain", 2500.0, 1e8, 0.25));
   InteractionSpec pair;
   pair.material_a = pair.material_b = "grain";
   spec.interactions.push_back(pair);

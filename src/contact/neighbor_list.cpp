@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/mesh_contact.hpp"
+
 namespace regodem {
 
 CellGrid::CellGrid(const Vec3& min_m, const Vec3& max_m, double min_cell_size_m, double max_cells)
@@ -35,6 +37,7 @@ void NeighborList::save_history(const ParticleStore& particles) {
   saved_.clear();
   saved_begin_.assign(2 * static_cast<std::size_t>(particles.next_id()), 0);
   const std::size_t owners = offset.empty() ? 0 : offset.size() - 1;
+  if (mesh_offset.size() != offset.size()) mesh_offset.assign(offset.size(), 0);
   for (std::size_t i = 0; i < owners; ++i) {
     const std::size_t begin = saved_.size();
     for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k)
@@ -43,6 +46,9 @@ void NeighborList::save_history(const ParticleStore& particles) {
     for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k)
       if (norm2(wall_tangential_history_m[k]) > 0.0)
         saved_.push_back({0, wall_primitive[k], wall_tangential_history_m[k]});
+    for (std::uint32_t k = mesh_offset[i]; k < mesh_offset[i + 1]; ++k)
+      if (norm2(mesh_tangential_history_m[k]) > 0.0)
+        saved_.push_back({mesh_triangle[k], kMeshWall + mesh_wall[k], mesh_tangential_history_m[k]});
     const ParticleId owner = particles.id[i];
     saved_begin_[2 * owner] = static_cast<std::uint32_t>(begin);
     saved_begin_[2 * owner + 1] = static_cast<std::uint32_t>(saved_.size());
@@ -53,6 +59,7 @@ void NeighborList::restore_history(const ParticleStore& particles, int threads) 
   const std::size_t n = particles.size();
   tangential_history_m.assign(partner.size(), Vec3{});
   wall_tangential_history_m.assign(wall_primitive.size(), Vec3{});
+  mesh_tangential_history_m.assign(mesh_triangle.size(), Vec3{});
   if (saved_.empty()) return;
 #pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
@@ -64,6 +71,12 @@ void NeighborList::restore_history(const ParticleStore& particles, int threads) 
       if (c.wall == kNoWall) {
         for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k)
           if (particles.id[partner[k]] == c.partner_id) { tangential_history_m[k] = c.history_m; break; }
+      } else if (c.wall >= kMeshWall) {
+        for (std::uint32_t k = mesh_offset[i]; k < mesh_offset[i + 1]; ++k)
+          if (mesh_wall[k] == c.wall - kMeshWall && mesh_triangle[k] == c.partner_id) {
+            mesh_tangential_history_m[k] = c.history_m;
+            break;
+          }
       } else {
         for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k)
           if (wall_primitive[k] == c.wall) { wall_tangential_history_m[k] = c.history_m; break; }
@@ -96,8 +109,11 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
 
   thread_partners_.resize(threads);
   thread_walls_.resize(threads);
+  thread_mesh_walls_.resize(threads);
+  thread_mesh_triangles_.resize(threads);
   offset.assign(n + 1, 0);
   wall_offset.assign(n + 1, 0);
+  mesh_offset.assign(n + 1, 0);
   touching_.assign(n, 0);
   const double cell = grid.cell_size_m;
   const auto& x = particles.position_m;
@@ -110,9 +126,14 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
     std::vector<std::uint32_t>& partners = thread_partners_[t];
     std::vector<std::uint32_t>& wall_hits = thread_walls_[t];
+    std::vector<std::uint32_t>& mesh_hits = thread_mesh_walls_[t];
+    std::vector<std::uint32_t>& mesh_triangles = thread_mesh_triangles_[t];
     std::vector<std::uint32_t> thin_walls;  // the owner's disk and cylinder walls
+    std::vector<std::uint32_t> candidates;
     partners.clear();
     wall_hits.clear();
+    mesh_hits.clear();
+    mesh_triangles.clear();
     for (std::size_t i = begin; i < end; ++i) {
       const double ri = radius[i];
       // Walls first: a pair that touches through a thin wall (a sieve) is no pair.
@@ -126,6 +147,26 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
         }
       }
       wall_offset[i + 1] = static_cast<std::uint32_t>(wall_hits.size() - first_wall);
+      // Mesh triangles within the radius plus the skin, found through each mesh's grid
+      // in its reference frame.
+      const std::size_t first_mesh_entry = mesh_triangles.size();
+      for (std::uint32_t m = 0; m < walls.meshes.size(); ++m) {
+        const MeshWall& mesh = walls.meshes[m];
+        const Vec3 local = walls.bodies[mesh.body].pose.to_reference(x[i]);
+        const double reach = ri + skin_m;
+        if (norm2(local - mesh.bounding_centre_m) > (mesh.bounding_radius_m + reach) * (mesh.bounding_radius_m + reach))
+          continue;
+        mesh.grid.candidates(local, reach, candidates);
+        for (const std::uint32_t tri : candidates) {
+          const TriangleClosestPoint q =
+              closest_point_on_triangle(local, mesh.mesh.corner(tri, 0), mesh.mesh.corner(tri, 1), mesh.mesh.corner(tri, 2));
+          if (norm2(q.point_m - local) < reach * reach) {
+            mesh_hits.push_back(m);
+            mesh_triangles.push_back(tri);
+          }
+        }
+      }
+      mesh_offset[i + 1] = static_cast<std::uint32_t>(mesh_triangles.size() - first_mesh_entry);
 
       const int reach = static_cast<int>(std::ceil((2.0 * ri + skin_m) / cell));
       int cx, cy, cz;
@@ -163,13 +204,19 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   for (std::size_t i = 0; i < n; ++i) {
     offset[i + 1] += offset[i];
     wall_offset[i + 1] += wall_offset[i];
+    mesh_offset[i + 1] += mesh_offset[i];
   }
   partner.resize(offset[n]);
   wall_primitive.resize(wall_offset[n]);
+  mesh_wall.resize(mesh_offset[n]);
+  mesh_triangle.resize(mesh_offset[n]);
   for (int t = 0; t < threads; ++t) {
     const std::size_t begin = n * t / threads;
     std::copy(thread_partners_[t].begin(), thread_partners_[t].end(), partner.begin() + offset[begin]);
     std::copy(thread_walls_[t].begin(), thread_walls_[t].end(), wall_primitive.begin() + wall_offset[begin]);
+    std::copy(thread_mesh_walls_[t].begin(), thread_mesh_walls_[t].end(), mesh_wall.begin() + mesh_offset[begin]);
+    std::copy(thread_mesh_triangles_[t].begin(), thread_mesh_triangles_[t].end(),
+              mesh_triangle.begin() + mesh_offset[begin]);
   }
   restore_history(particles, threads);
 
@@ -178,7 +225,8 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   thread_begin.assign(threads + 1, static_cast<std::uint32_t>(n));
   thread_begin[0] = 0;
   auto work_of = [&](std::size_t i) {
-    return 1.0 + (offset[i + 1] - offset[i]) + 3.0 * (wall_offset[i + 1] - wall_offset[i]) + 10.0 * touching_[i];
+    return 1.0 + (offset[i + 1] - offset[i]) + 3.0 * (wall_offset[i + 1] - wall_offset[i]) +
+           4.0 * (mesh_offset[i + 1] - mesh_offset[i]) + 10.0 * touching_[i];
   };
   double total_work = 0.0;
   for (std::size_t i = 0; i < n; ++i) total_work += work_of(i);

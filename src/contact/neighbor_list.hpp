@@ -47,6 +47,12 @@ class NeighborList {
   std::vector<std::uint32_t> wall_offset;
   std::vector<std::uint32_t> wall_primitive;
   std::vector<Vec3> wall_tangential_history_m;
+  // Particle-mesh-triangle pairs, same layout: the triangles of mesh wall mesh_wall[k]
+  // within reach, grouped by mesh and ascending within a mesh (MeshTouchFinder's input).
+  std::vector<std::uint32_t> mesh_offset;
+  std::vector<std::uint32_t> mesh_wall;
+  std::vector<std::uint32_t> mesh_triangle;
+  std::vector<Vec3> mesh_tangential_history_m;
   // Owner ranges for the force pass: thread t handles [thread_begin[t], thread_begin[t+1]).
   std::vector<std::uint32_t> thread_begin;
 
@@ -75,10 +81,11 @@ class NeighborList {
   // History saved by owner id across a rebuild (only entries with a non-zero spring).
   struct SavedContact {
     ParticleId partner_id;
-    std::uint32_t wall;  // primitive index, or kNoWall for a particle partner
-    Vec3 history_m;
+    std::uint32_t wall;  // primitive index, kNoWall for a particle partner, kMeshWall + mesh
+    Vec3 history_m;       // (partner_id is then the triangle)
   };
   static constexpr std::uint32_t kNoWall = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kMeshWall = 0x80000000u;
   std::vector<std::uint32_t> saved_begin_;  // by owner id; size next_id + 1
   std::vector<SavedContact> saved_;
   // Reused scratch space.
@@ -87,6 +94,7 @@ class NeighborList {
   std::vector<std::uint32_t> touching_;  // per owner: partners in contact at the build
   std::vector<std::vector<std::uint32_t>> thread_partners_;
   std::vector<std::vector<std::uint32_t>> thread_walls_;
+  std::vector<std::vector<std::uint32_t>> thread_mesh_walls_, thread_mesh_triangles_;
 };
 
 }  // namespace regodem

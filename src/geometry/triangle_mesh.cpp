@@ -82,11 +82,7 @@ MeshTransform MeshTransform::from_matrix(double scale, const Matrix3& rotation, 
   return xf;
 }
 
-Vec3 MeshTransform::rotate(const Vec3& v) const {
-  const Matrix3& m = rotation;
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
-}
+Vec3 MeshTransform::rotate(const Vec3& v) const { return multiply(rotation, v); }
 
 Vec3 MeshTransform::apply(const Vec3& x) const { return rotate(x * scale) + translation_m; }
 

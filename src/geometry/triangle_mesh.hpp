@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/matrix3.hpp"
 #include "core/vec3.hpp"
 
 namespace regodem {
@@ -22,13 +23,10 @@ struct Aabb {
   Vec3 hi_m;
 };
 
-/// A row-major 3x3 matrix: m[row][column].
-using Matrix3 = std::array<std::array<double, 3>, 3>;
-
 /// x -> R (s x) + t: scale about the file's origin, then rotate about it, then translate.
 struct MeshTransform {
   double scale = 1.0;                                          // e.g. 1e-3 for a file in mm
-  Matrix3 rotation = {{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};  // proper rotation
+  Matrix3 rotation = identity_matrix3();  // proper rotation
   Vec3 translation_m;
 
   /// Rotation by angle_rad about axis (need not be unit; right-hand rule), Rodrigues' formula.

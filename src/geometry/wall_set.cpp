@@ -1,6 +1,7 @@
 #include "geometry/wall_set.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace regodem {
 
@@ -64,14 +65,39 @@ void WallSet::add_sieve_segment(std::uint32_t body, const Vec3& base_centre_m, c
   shell.rim_top = outer_top_end;
 }
 
+void WallSet::add_mesh(std::uint32_t body, TriangleMesh mesh, MaterialIndex material, double cell_size_m) {
+  meshes.emplace_back(std::move(mesh), body, material, cell_size_m);
+}
+
+double WallSet::mesh_reach_m(std::uint32_t body) const {
+  const WallBody& b = bodies[body];
+  double reach = 0.0;
+  for (const MeshWall& m : meshes)
+    if (m.body == body)
+      reach = std::max(reach, norm(b.pose.to_world(m.bounding_centre_m) - b.motion.axis_point_m) + m.bounding_radius_m);
+  return reach;
+}
+
 void WallSet::advance(double time_s, double dt_s) {
   for (std::uint32_t b = 0; b < bodies.size(); ++b) {
     WallBody& body = bodies[b];
-    if (!body.motion.active_at(time_s) || norm2(body.motion.velocity_m_per_s) == 0.0) continue;
-    const Vec3 step = body.motion.velocity_m_per_s * dt_s;
+    WallMotion& motion = body.motion;
+    if (!motion.active_at(time_s) || !motion.moves()) continue;
+    // The feed ends on the step that reaches max_travel_m, exactly there.
+    Vec3 step = motion.velocity_m_per_s * dt_s;
+    const double remaining_m = motion.max_travel_m - body.travel_m;
+    if (norm(step) >= remaining_m) {
+      step = normalized(motion.velocity_m_per_s) * std::max(0.0, remaining_m);
+      motion.velocity_m_per_s = {};
+    }
+    const Vec3 turn = motion.angular_velocity_rad_per_s * dt_s;
+    // A turn moves a mesh's points by up to angle x reach (analytic walls turn about
+    // their own axis: their surface stays where it is).
+    body.displacement_since_build_m += norm(step) + norm(turn) * mesh_reach_m(b);
+    body.pose.turn_and_shift(turn, motion.axis_point_m, step);
+    body.travel_m += norm(step);
     body.displacement_m += step;
-    body.motion.axis_point_m += step;
-    body.displacement_since_build_m += norm(step);
+    motion.axis_point_m += step;
     for (WallPrimitive& p : primitives)
       if (p.body == b) p.point_m += step;
   }

@@ -1,9 +1,12 @@
 #pragma once
 // The walls of a simulation: user-level bodies (a name, a motion, the force and torque
-// the particles exert on it) and the analytic primitives they are made of.
+// the particles exert on it) and what they are made of: analytic primitives and
+// triangle meshes.
 #include <string>
 #include <vector>
 
+#include "geometry/mesh_wall.hpp"
+#include "geometry/rigid_pose.hpp"
 #include "geometry/wall_motion.hpp"
 #include "geometry/wall_primitive.hpp"
 
@@ -15,7 +18,14 @@ struct WallBody {
   Vec3 force_N;               // reaction of the particles on the wall, last step
   Vec3 torque_N_m;            // about motion.axis_point_m, last step
   Vec3 displacement_m;        // total translation since the start
-  double displacement_since_build_m = 0.0;  // for the neighbour-list skin check
+  RigidPose pose;             // reference frame -> world (mesh walls)
+  double travel_m = 0.0;      // distance moved along the feed (the velocity)
+  double depth_at_start_m = 0.0;  // drill depth = depth_at_start_m + travel_m
+  // Upper bound on how far any surface point moved since the neighbour lists were
+  // built: the translation plus, for a turning mesh, the arc its farthest point swept.
+  double displacement_since_build_m = 0.0;
+
+  double depth_m() const { return depth_at_start_m + travel_m; }
 };
 
 class WallSet {
@@ -39,6 +49,10 @@ class WallSet {
                          double length_m, bool outer_bottom_end, bool outer_top_end, bool cap_bottom,
                          MaterialIndex material);
 
+  /// A triangle mesh given in the reference frame (its placement at the start).
+  /// cell_size_m: its contact grid's cell edge (<= 0: the mesh's mean edge length).
+  void add_mesh(std::uint32_t body, TriangleMesh mesh, MaterialIndex material, double cell_size_m = 0.0);
+
   /// Moves the walls whose motion is active during [time_s, time_s + dt_s).
   void advance(double time_s, double dt_s);
   /// Largest wall translation since the neighbour list was built.
@@ -47,6 +61,11 @@ class WallSet {
 
   std::vector<WallBody> bodies;
   std::vector<WallPrimitive> primitives;
+  std::vector<MeshWall> meshes;
+
+ private:
+  /// Farthest point of the body's meshes from its rotation axis point (0 without meshes).
+  double mesh_reach_m(std::uint32_t body) const;
 };
 
 }  // namespace regodem

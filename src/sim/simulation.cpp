@@ -39,6 +39,34 @@ struct HalfKick {
   }
 };
 
+/// The tangential spring of a mesh contact lives with a triangle's list entry. When a
+/// sphere rolls or slides across an edge its contact moves to the next triangle, whose
+/// entry has no spring yet: the spring moves with it from the entry that just lost its
+/// touch, if that triangle shares a vertex with the new one. Springs of entries not
+/// touching are then cleared, as for every other contact.
+void carry_mesh_springs(const TriangleMesh& mesh, const std::uint32_t* triangles, std::uint32_t count,
+                        const std::vector<MeshTouch>& touches, Vec3* spring, std::vector<char>& touched) {
+  touched.assign(count, 0);
+  for (const MeshTouch& t : touches) touched[t.entry] = 1;
+  const auto share_a_vertex = [&](std::uint32_t a, std::uint32_t b) {
+    for (const std::uint32_t va : mesh.triangles[triangles[a]])
+      for (const std::uint32_t vb : mesh.triangles[triangles[b]])
+        if (va == vb) return true;
+    return false;
+  };
+  for (const MeshTouch& t : touches) {
+    if (spring[t.entry] != Vec3{}) continue;
+    for (std::uint32_t e = 0; e < count; ++e)
+      if (!touched[e] && spring[e] != Vec3{} && share_a_vertex(e, t.entry)) {
+        spring[t.entry] = spring[e];
+        spring[e] = {};
+        break;
+      }
+  }
+  for (std::uint32_t e = 0; e < count; ++e)
+    if (!touched[e] && spring[e] != Vec3{}) spring[e] = {};
+}
+
 }  // namespace
 
 Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const SimulationSettings& settings,
@@ -54,6 +82,7 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
   if (wall_thermal.size() != n_bodies)
     throw InputError(fmt::format("{} wall thermal descriptions for {} walls", wall_thermal.size(), n_bodies));
   spills_.resize(settings_.threads);
+  mesh_scratch_.resize(settings_.threads);
   wall_force_by_thread_.assign(settings_.threads, std::vector<Vec3>(n_bodies));
   wall_torque_by_thread_.assign(settings_.threads, std::vector<Vec3>(n_bodies));
   wall_conduction_by_thread_.assign(settings_.threads, std::vector<double>(n_bodies));
@@ -222,6 +251,11 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const std::uint32_t* __restrict wall_offset = neighbors_.wall_offset.data();
   const std::uint32_t* __restrict wall_primitive = neighbors_.wall_primitive.data();
   Vec3* __restrict wall_history = neighbors_.wall_tangential_history_m.data();
+  const std::uint32_t* __restrict mesh_offset = neighbors_.mesh_offset.data();
+  const std::uint32_t* __restrict mesh_wall = neighbors_.mesh_wall.data();
+  const std::uint32_t* __restrict mesh_triangle = neighbors_.mesh_triangle.data();
+  Vec3* __restrict mesh_history = neighbors_.mesh_tangential_history_m.data();
+  const MeshWall* meshes = walls.meshes.data();
   const WallPrimitive* __restrict primitives = walls.primitives.data();
   const WallBody* __restrict bodies = walls.bodies.data();
   const std::uint32_t* thread_begin = neighbors_.thread_begin.data();
@@ -256,6 +290,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     }
     std::vector<Spill>& spill = spills_[t];
     spill.clear();
+    MeshTouchFinder& finder = mesh_scratch_[t].finder;
+    std::vector<MeshTouch>& touches = mesh_scratch_[t].touches;
+    std::vector<char>& touched = mesh_scratch_[t].touched;
     std::vector<Vec3>& wall_force = wall_force_by_thread_[t];
     std::vector<Vec3>& wall_torque = wall_torque_by_thread_[t];
     std::fill(wall_force.begin(), wall_force.end(), Vec3{});
@@ -331,6 +368,47 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         }
       }
 
+      // One particle-wall contact, analytic or mesh: R* = R_i, m* = m_i (DESIGN.md section 2).
+      const auto touch_wall = [&](double distance_m, const Vec3& normal, const Vec3& contact_point_m,
+                                  MaterialIndex wall_material, std::uint32_t body, Vec3& wall_spring) {
+        ++wall_contacts;
+        const WallMotion& motion = bodies[body].motion;
+        const Vec3 wall_omega = motion.active_at(now) ? motion.angular_velocity_rad_per_s : Vec3{};
+        ContactGeometry c;
+        c.normal = normal;
+        c.overlap_m = ri - distance_m;
+        c.effective_radius_m = ri;
+        c.effective_mass_kg = 1.0 / inv_mi;
+        c.relative_velocity_m_per_s =
+            vi + cross(wi, normal * distance_m) - motion.surface_velocity(contact_point_m, now);
+        c.relative_angular_velocity_rad_per_s = wi - wall_omega;
+        c.inv_inertia_sum = inv_ii;
+        c.time_step_s = dt;
+        c.slip_time_s = slip_time_s;
+        const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, wall_material), c, wall_spring);
+        if constexpr (Heat) {
+          const WallContactHeat& wh = wall_heat[body];
+          if (wh.conducts) {
+            const double q = contact_conductance_W_per_K(conduction(mat_i, wall_material),
+                                                         wh.contact_conductivity(conductivity_i), f.contact_radius_m) *
+                             (wh.temperature_K - temperature_i);
+            heat_i += q;
+            wall_conduction[body] -= q;
+          }
+          if (friction_heating) {  // an adiabatic wall takes none of it
+            const double share_i = wh.conducts ? wall_partition : 1.0;
+            friction_power += f.sliding_power_W;
+            heat_i += share_i * f.sliding_power_W;
+            wall_friction[body] += (1.0 - share_i) * f.sliding_power_W;
+          }
+        }
+        force_i += f.force_on_i_N;
+        torque_i += cross(normal, f.tangential_force_on_i_N) * distance_m + f.rolling_torque_on_i_N_m;
+        wall_force[body] -= f.force_on_i_N;
+        wall_torque[body] +=
+            cross(contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
+      };
+
       for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k) {
         const WallPrimitive& wall = primitives[wall_primitive[k]];
         const WallProximity prox = closest_wall_point(wall, xi);
@@ -338,43 +416,22 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           if (wall_history[k] != Vec3{}) wall_history[k] = {};
           continue;
         }
-        ++wall_contacts;
-        const WallMotion& motion = bodies[wall.body].motion;
-        const Vec3 wall_omega = motion.active_at(now) ? motion.angular_velocity_rad_per_s : Vec3{};
-        const double arm = prox.distance_m;
-        ContactGeometry c;
-        c.normal = prox.normal;
-        c.overlap_m = ri - prox.distance_m;
-        c.effective_radius_m = ri;
-        c.effective_mass_kg = 1.0 / inv_mi;
-        c.relative_velocity_m_per_s =
-            vi + cross(wi, prox.normal * arm) - motion.surface_velocity(prox.contact_point_m, now);
-        c.relative_angular_velocity_rad_per_s = wi - wall_omega;
-        c.inv_inertia_sum = inv_ii;
-        c.time_step_s = dt;
-        c.slip_time_s = slip_time_s;
-        const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, wall.material), c, wall_history[k]);
-        if constexpr (Heat) {
-          const WallContactHeat& wh = wall_heat[wall.body];
-          if (wh.conducts) {
-            const double q = contact_conductance_W_per_K(conduction(mat_i, wall.material),
-                                                         wh.contact_conductivity(conductivity_i), f.contact_radius_m) *
-                             (wh.temperature_K - temperature_i);
-            heat_i += q;
-            wall_conduction[wall.body] -= q;
-          }
-          if (friction_heating) {  // an adiabatic wall takes none of it
-            const double share_i = wh.conducts ? wall_partition : 1.0;
-            friction_power += f.sliding_power_W;
-            heat_i += share_i * f.sliding_power_W;
-            wall_friction[wall.body] += (1.0 - share_i) * f.sliding_power_W;
-          }
-        }
-        force_i += f.force_on_i_N;
-        torque_i += cross(prox.normal, f.tangential_force_on_i_N) * arm + f.rolling_torque_on_i_N_m;
-        wall_force[wall.body] -= f.force_on_i_N;
-        wall_torque[wall.body] +=
-            cross(prox.contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
+        touch_wall(prox.distance_m, prox.normal, prox.contact_point_m, wall.material, wall.body, wall_history[k]);
+      }
+
+      // Mesh walls: the entries of one mesh form a run; its touches are counted once
+      // per face, edge or vertex (MeshTouchFinder).
+      for (std::uint32_t g = mesh_offset[i]; g < mesh_offset[i + 1];) {
+        std::uint32_t g_end = g + 1;
+        while (g_end < mesh_offset[i + 1] && mesh_wall[g_end] == mesh_wall[g]) ++g_end;
+        const MeshWall& mesh = meshes[mesh_wall[g]];
+        finder.find(mesh, bodies[mesh.body].pose, mesh_triangle + g, g_end - g, xi, ri, touches);
+        Vec3* spring = mesh_history + g;
+        carry_mesh_springs(mesh.mesh, mesh_triangle + g, g_end - g, touches, spring, touched);
+        for (const MeshTouch& touch : touches)
+          touch_wall(touch.distance_m, touch.normal, touch.contact_point_m, mesh.material, mesh.body,
+                     spring[touch.entry]);
+        g = g_end;
       }
       force[i] += force_i;
       torque[i] += torque_i;

@@ -144,6 +144,12 @@ class Simulation {
     double heat_W;
   };
   std::vector<std::vector<Spill>> spills_;
+  struct MeshScratch {  // per thread
+    MeshTouchFinder finder;
+    std::vector<MeshTouch> touches;
+    std::vector<char> touched;
+  };
+  std::vector<MeshScratch> mesh_scratch_;
   std::vector<std::vector<Vec3>> wall_force_by_thread_, wall_torque_by_thread_;
   // Heat into each wall body by conduction and by friction, per thread.
   std::vector<std::vector<double>> wall_conduction_by_thread_, wall_friction_by_thread_;

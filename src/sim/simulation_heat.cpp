@@ -107,6 +107,8 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
   }
   // The same conductances as the coupled contact pass: a = sqrt(R* delta_n).
   const NeighborList& nl = neighbors_;
+  MeshTouchFinder finder;
+  std::vector<MeshTouch> touches;
   for (std::uint32_t i = 0; i < n; ++i) {
     const double ri = particles.radius_m[i];
     const MaterialIndex mi = particles.material[i];
@@ -122,20 +124,31 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
           pair_heat, pair_heat.pair_conductivity(ki, particles.conductivity_W_per_mK[j]), a);
       if (g > 0.0) net.edges.push_back({i, j, g});
     }
+    const auto link_wall = [&](double distance_m, MaterialIndex wall_material, std::uint32_t body) {
+      const WallContactHeat wh = WallContactHeat::of(wall_thermal[body]);
+      if (!wh.conducts) return;
+      const double a = std::sqrt(ri * (ri - distance_m));
+      const double g =
+          contact_conductance_W_per_K(conduction_parameters_(mi, wall_material), wh.contact_conductivity(ki), a);
+      if (g <= 0.0) return;
+      if (wall_node[body] >= 0)
+        net.edges.push_back({i, static_cast<std::uint32_t>(wall_node[body]), g});
+      else
+        net.boundary_links.push_back({i, static_cast<std::uint32_t>(wall_boundary[body]), g});
+    };
     for (std::uint32_t k = nl.wall_offset[i]; k < nl.wall_offset[i + 1]; ++k) {
       const WallPrimitive& wall = walls.primitives[nl.wall_primitive[k]];
-      const WallContactHeat wh = WallContactHeat::of(wall_thermal[wall.body]);
-      if (!wh.conducts) continue;
       const WallProximity prox = closest_wall_point(wall, particles.position_m[i]);
-      if (!prox.candidate || prox.distance_m >= ri) continue;
-      const double a = std::sqrt(ri * (ri - prox.distance_m));
-      const double g =
-          contact_conductance_W_per_K(conduction_parameters_(mi, wall.material), wh.contact_conductivity(ki), a);
-      if (g <= 0.0) continue;
-      if (wall_node[wall.body] >= 0)
-        net.edges.push_back({i, static_cast<std::uint32_t>(wall_node[wall.body]), g});
-      else
-        net.boundary_links.push_back({i, static_cast<std::uint32_t>(wall_boundary[wall.body]), g});
+      if (prox.candidate && prox.distance_m < ri) link_wall(prox.distance_m, wall.material, wall.body);
+    }
+    for (std::uint32_t g = nl.mesh_offset[i]; g < nl.mesh_offset[i + 1];) {
+      std::uint32_t g_end = g + 1;
+      while (g_end < nl.mesh_offset[i + 1] && nl.mesh_wall[g_end] == nl.mesh_wall[g]) ++g_end;
+      const MeshWall& mesh = walls.meshes[nl.mesh_wall[g]];
+      finder.find(mesh, walls.bodies[mesh.body].pose, nl.mesh_triangle.data() + g, g_end - g,
+                  particles.position_m[i], ri, touches);
+      for (const MeshTouch& touch : touches) link_wall(touch.distance_m, mesh.material, mesh.body);
+      g = g_end;
     }
   }
   return net;

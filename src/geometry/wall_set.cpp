@@ -9,6 +9,8 @@ std::uint32_t WallSet::add_body(const std::string& name, const WallMotion& motio
   WallBody body;
   body.name = name;
   body.motion = motion;
+  body.feed_direction = normalized(motion.velocity_m_per_s);
+  body.spin_axis = normalized(motion.angular_velocity_rad_per_s);
   bodies.push_back(body);
   return static_cast<std::uint32_t>(bodies.size() - 1);
 }

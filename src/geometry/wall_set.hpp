@@ -21,6 +21,10 @@ struct WallBody {
   RigidPose pose;             // reference frame -> world (mesh walls)
   double travel_m = 0.0;      // distance moved along the feed (the velocity)
   double depth_at_start_m = 0.0;  // drill depth = depth_at_start_m + travel_m
+  // Unit directions of the motion as given (kept after the feed stops): the drill's
+  // thrust is -force . feed_direction, its torque -torque . spin_axis.
+  Vec3 feed_direction;
+  Vec3 spin_axis;
   // Upper bound on how far any surface point moved since the neighbour lists were
   // built: the translation plus, for a turning mesh, the arc its farthest point swept.
   double displacement_since_build_m = 0.0;

@@ -210,20 +210,7 @@ void read_random_insertion(const YamlSection& section, const ScenarioReferences&
 
 void read_file_insertion(const YamlSection& section, const ScenarioReferences& references,
                          InsertionSpec& insertion) {
-  const auto file_value = section.get("file");
-  const auto file = file_value->text();
-  if (!file) return;
-  // Relative to the scenario file, so a scenario and its packing travel together.
-  std::filesystem::path path(*file);
-  if (path.is_relative()) path = std::filesystem::path(references.base_directory) / path;
-  // Absolute, so that whoever opens it later need not know where the scenario was.
-  std::error_code ignored;
-  path = std::filesystem::absolute(path, ignored).lexically_normal();
-  if (!std::filesystem::is_regular_file(path, ignored)) {
-    file_value->error(fmt::format("no such file: '{}'", path.string()));
-    return;
-  }
-  insertion.from_file = path.string();
+  if (const auto path = read_input_file(*section.get("file"), references)) insertion.from_file = *path;
 }
 
 /// A static-bed stage freezes the particles: nothing can be inserted during it.

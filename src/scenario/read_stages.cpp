@@ -79,6 +79,17 @@ void read_settled_end(const YamlSection& section, StageSpec& stage) {
   }
 }
 
+/// `until: {wall: drill, depth: 100 mm}`: until that wall's depth (its motion's
+/// depth_at_start plus the distance fed along its velocity) reaches the value.
+void read_depth_end(const YamlValue& value, StageSpec& stage) {
+  stage.end = StageEnd::depth;
+  const auto section = value.section();
+  if (!section) return;
+  section->allow_only({"wall", "depth"});
+  if (const auto wall = section->require("wall")) stage.depth_wall = wall->text().value_or("");
+  stage.depth_m = section->required_quantity("depth", Dimension::length).value_or(0.0);
+}
+
 const std::vector<std::string> kStaticStageKeys{"thermal_time_step", "stability_fraction"};
 
 bool is_fraction_of_one(double value) { return value > 0.0 && value <= 1.0; }
@@ -132,7 +143,8 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
   stage.where = item.where();
   const auto section = item.section();
   if (!section) return stage;
-  const bool settled = section->has("until");
+  const auto until = section->get("until");
+  const bool settled = until && !until->node().IsMap();
   // Judged from the text so that the keys can be checked before the value is.
   const auto stepping = section->get("heat_stepping");
   const bool frozen = stepping && stepping->node().IsScalar() &&
@@ -143,7 +155,8 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
     if (settled) {
       allowed.push_back(key);
     } else {
-      misplaced.emplace_back(key, "only with 'until: settled'");
+      misplaced.emplace_back(key, until ? "only with 'until: settled'; a stage that ends at a depth takes none"
+                                        : "only with 'until: settled'");
     }
   }
   for (const std::string& key : kStaticStageKeys) {
@@ -165,7 +178,10 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
                                              "be greater than 0")
                            .value_or(0.0);
   } else if (end_key && *end_key == "until") {
-    if (section->get("until")->choice({"settled"})) read_settled_end(*section, stage);
+    if (until->node().IsMap())
+      read_depth_end(*until, stage);
+    else if (until->choice({"settled"}))
+      read_settled_end(*section, stage);
   }
 
   read_heat_stepping(*section, references, stage);

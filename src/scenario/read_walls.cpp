@@ -1,5 +1,5 @@
-// The `walls` list: analytic planes, disks, cylinder shells and segmented sieves, with
-// prescribed motion and a thermal mode.
+// The `walls` list: analytic planes, disks, cylinder shells and segmented sieves, and
+// triangle meshes (read_mesh_wall.cpp), with prescribed motion and a thermal mode.
 #include <cmath>
 
 #include <fmt/format.h>
@@ -27,6 +27,9 @@ std::vector<std::string> keys_for(WallShape shape) {
     case WallShape::sieve:
       keys.insert(keys.end(), {"base", "axis", "radius", "diameter", "length", "segments", "ends"});
       break;
+    case WallShape::mesh:
+      keys.insert(keys.end(), {"file", "scale", "placement", "grid_cell"});
+      break;
   }
   return keys;
 }
@@ -50,6 +53,12 @@ std::vector<std::pair<std::string, std::string>> misplaced_keys(WallShape shape)
               {"center", "a cylinder takes 'base', the centre of its bottom end"},
               {"normal", "a cylinder takes 'axis', from its bottom end to its top"},
               {"segments", "only a sieve has segments"}};
+    case WallShape::mesh:
+      return {{"point", "a mesh is placed by 'placement: {translation: ..., rotation: ...}'"},
+              {"center", "a mesh is placed by 'placement: {translation: ..., rotation: ...}'"},
+              {"base", "a mesh is placed by 'placement: {translation: ..., rotation: ...}'"},
+              {"translation", "goes inside 'placement'"},
+              {"rotation", "goes inside 'placement'"}};
     case WallShape::sieve:
       return {{"point", "a sieve takes 'base', the centre of the bottom end of its lowest segment"},
               {"center", "a sieve takes 'base', the centre of the bottom end of its lowest segment"},
@@ -63,7 +72,8 @@ std::vector<std::pair<std::string, std::string>> misplaced_keys(WallShape shape)
 void read_motion(const YamlValue& value, WallSpec& wall) {
   const auto section = value.section();
   if (!section) return;
-  section->allow_only({"velocity", "angular_velocity", "axis", "axis_point", "start", "stop"});
+  section->allow_only({"velocity", "angular_velocity", "axis", "axis_point", "start", "stop", "stop_at_depth",
+                       "depth_at_start"});
   MotionSpec& motion = wall.motion;
   motion.velocity_m_per_s = section->vector("velocity", Dimension::velocity).value_or(Vec3{});
   motion.axis_point_m = section->vector("axis_point", Dimension::length).value_or(wall.point_m);
@@ -84,14 +94,15 @@ void read_motion(const YamlValue& value, WallSpec& wall) {
           spin->vector(Dimension::angular_velocity).value_or(Vec3{});
     }
     const Vec3& omega = motion.angular_velocity_rad_per_s;
-    // Analytic walls may only spin about their own symmetry axis (or plane normal).
-    if (norm(cross(omega, wall.normal)) > 1e-9 * norm(omega)) {
+    // Analytic walls may only spin about their own symmetry axis (or plane normal);
+    // a mesh turns as a rigid body about any axis.
+    if (wall.shape != WallShape::mesh && norm(cross(omega, wall.normal)) > 1e-9 * norm(omega)) {
       spin->error("an analytic wall can turn only about its own axis (its 'axis' or 'normal')");
     }
     // A plane turned about any line along its normal stays in place; a disk or cylinder
     // only about its own axis.
     const Vec3 offset = motion.axis_point_m - wall.point_m;
-    if (wall.shape != WallShape::plane &&
+    if (wall.shape != WallShape::plane && wall.shape != WallShape::mesh &&
         norm(cross(offset, wall.normal)) > 1e-9 * (norm(offset) + 1e-3)) {
       (section->has("axis_point") ? *section->get("axis_point") : *spin)
           .error("the rotation axis must pass through the wall's own axis");
@@ -108,6 +119,20 @@ void read_motion(const YamlValue& value, WallSpec& wall) {
                                               "be greater than 0")) {
     if (*stop <= motion.start_s) section->get("stop")->error("must be later than 'start'");
     motion.stop_s = *stop;
+  }
+  // Depth: how far the wall has been fed along its velocity, plus where it started.
+  motion.depth_at_start_m =
+      read_checked_quantity(*section, "depth_at_start", Dimension::length, Presence::optional, is_any, "")
+          .value_or(0.0);
+  if (const auto stop_depth = section->get("stop_at_depth")) {
+    if (norm(motion.velocity_m_per_s) == 0.0) {
+      stop_depth->error("the depth is measured along 'velocity' (the feed); give the wall a velocity");
+    } else if (const auto depth = stop_depth->quantity(Dimension::length)) {
+      if (*depth <= motion.depth_at_start_m)
+        stop_depth->error(fmt::format("must be deeper than 'depth_at_start' ({} m)", motion.depth_at_start_m));
+      else
+        motion.stop_at_depth_m = *depth;
+    }
   }
 }
 
@@ -202,6 +227,7 @@ void read_shape(const YamlSection& section, const ScenarioReferences& references
       }
       break;
     }
+    case WallShape::mesh: break;  // read_mesh_shape
   }
   if (extent) check_inside_domain(section.value(), *extent, references, "the wall");
 }
@@ -324,7 +350,7 @@ std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReference
   wall.where = item.where();
   const auto type_value = section->require("type");
   const auto type =
-      type_value ? type_value->choice({"plane", "disk", "cylinder", "sieve"}) : std::nullopt;
+      type_value ? type_value->choice({"plane", "disk", "cylinder", "sieve", "mesh"}) : std::nullopt;
   if (!type) {
     // Without a shape, still catch keys that no wall takes.
     std::vector<std::string> any_wall_key = keys_for(WallShape::cylinder);
@@ -336,7 +362,8 @@ std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReference
   wall.shape = *type == "plane"      ? WallShape::plane
                : *type == "disk"     ? WallShape::disk
                : *type == "cylinder" ? WallShape::cylinder
-                                     : WallShape::sieve;
+               : *type == "sieve"    ? WallShape::sieve
+                                     : WallShape::mesh;
   section->allow_only(keys_for(wall.shape), misplaced_keys(wall.shape));
   const auto name = read_item_name(*section);
   if (name) wall.name = *name;
@@ -344,7 +371,10 @@ std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReference
   if (const auto material = section->get("material")) {
     wall.material = read_reference(*material, references.material_names, "material").value_or("");
   }
-  read_shape(*section, references, wall);
+  if (wall.shape == WallShape::mesh)
+    read_mesh_shape(*section, references, wall);
+  else
+    read_shape(*section, references, wall);
   if (const auto motion = section->get("motion")) read_motion(*motion, wall);
   if (const auto thermal = section->get("thermal")) read_wall_thermal(*thermal, references, wall);
   if (!name) return std::nullopt;

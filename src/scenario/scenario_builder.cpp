@@ -121,6 +121,7 @@ const char* shape_name(WallShape shape) {
     case WallShape::disk: return "disk";
     case WallShape::cylinder: return "cylinder";
     case WallShape::sieve: return "sieve";
+    case WallShape::mesh: return "mesh";
   }
   return "wall";
 }
@@ -134,7 +135,9 @@ WallMotion wall_motion(const WallSpec& w) {
   m.axis_point_m = w.motion.axis_point_m;
   m.start_s = w.motion.start_s;
   m.stop_s = w.motion.stop_s;
-  if (norm2(m.angular_velocity_rad_per_s) == 0.0) return m;
+  m.max_travel_m = w.motion.stop_at_depth_m - w.motion.depth_at_start_m;  // infinite without a stop depth
+  // A mesh turns as a rigid body about any axis.
+  if (norm2(m.angular_velocity_rad_per_s) == 0.0 || w.shape == WallShape::mesh) return m;
   // Analytic shapes may only spin about their own symmetry axis (their shape then
   // stays put); turning them any other way needs a mesh wall.
   const Vec3 axis = normalized(w.normal);
@@ -455,6 +458,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
       continue;
     }
     const std::uint32_t body = walls.add_body(w.name, motion);
+    walls.bodies[body].depth_at_start_m = w.motion.depth_at_start_m;
     double area = 0.0;
     switch (w.shape) {
       case WallShape::plane: walls.add_plane(body, w.point_m, w.normal, material); break;
@@ -469,6 +473,18 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                disk_area(w.radius_m) * ((w.cap_bottom ? 1.0 : 0.0) + (w.cap_top ? 1.0 : 0.0));
         break;
       case WallShape::sieve: break;  // expanded above
+      case WallShape::mesh: {
+        // The mesh's reference frame is its placement at the start (the body's pose is
+        // the identity then).
+        walls.add_mesh(body, *w.mesh, material, w.mesh_grid_cell_m);
+        area = w.mesh->area();
+        const Aabb box = w.mesh->bounding_box();
+        lines.push_back(fmt::format("wall '{}': mesh of {} triangles from '{}', spanning ({:.4g}, {:.4g}, {:.4g}) to "
+                                    "({:.4g}, {:.4g}, {:.4g}) m",
+                                    w.name, w.mesh->triangle_count(), w.mesh_file, box.lo_m.x, box.lo_m.y,
+                                    box.lo_m.z, box.hi_m.x, box.hi_m.y, box.hi_m.z));
+        break;
+      }
     }
     wall_thermal.push_back(thermal_wall(spec, w, area));
     if (spec.heat.enabled) lines.push_back(describe_thermal_wall(w, wall_thermal.back(), 1, 0.0));
@@ -514,6 +530,18 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     stage.settled_kinetic_energy_J = st.settled_kinetic_energy_J;
     stage.min_duration_s = st.min_duration_s;
     stage.max_duration_s = st.max_duration_s;
+    if (st.end == StageEnd::depth) {
+      const auto& bodies = impl.simulation->walls.bodies;
+      const auto named = std::find_if(bodies.begin(), bodies.end(),
+                                      [&](const WallBody& b) { return b.name == st.depth_wall; });
+      if (named == bodies.end())
+        fail(st.where, fmt::format("stage '{}': no wall named '{}' to measure the depth of", st.name, st.depth_wall));
+      if (norm(named->motion.velocity_m_per_s) == 0.0)
+        fail(st.where, fmt::format("stage '{}': wall '{}' has no feed (motion velocity), so its depth never changes",
+                                   st.name, st.depth_wall));
+      stage.depth_body = static_cast<int>(named - bodies.begin());
+      stage.depth_m = st.depth_m;
+    }
     for (const OverrideSpec& o : st.overrides) {
       PairOverride po;
       if (!o.material_a.empty()) {
@@ -536,7 +564,10 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                                       : fmt::format("{:.3g} x the explicit stability limit",
                                                     stage.default_step_in_stability_limits())));
     else
-      lines.push_back(stage.until_settled
+      lines.push_back(stage.ends_at_depth()
+                          ? fmt::format("stage '{}': until wall '{}' reaches a depth of {:.4g} m", stage.name,
+                                        st.depth_wall, stage.depth_m)
+                      : stage.until_settled
                           ? fmt::format("stage '{}': until settled (kinetic energy per particle < {:.3g} J), at most "
                                         "{:.4g} s",
                                         stage.name, stage.settled_kinetic_energy_J, stage.max_duration_s)

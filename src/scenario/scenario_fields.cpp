@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include <fmt/format.h>
 
@@ -186,6 +187,20 @@ void check_inside_domain(const YamlValue& at, const Bounds& extent,
   if (!outside.empty()) {
     at.error(fmt::format("{} reaches outside the domain: {}", what, outside));
   }
+}
+
+std::optional<std::string> read_input_file(const YamlValue& value, const ScenarioReferences& references) {
+  const auto file = value.text();
+  if (!file) return std::nullopt;
+  std::filesystem::path path(*file);
+  if (path.is_relative()) path = std::filesystem::path(references.base_directory) / path;
+  std::error_code ignored;
+  path = std::filesystem::absolute(path, ignored).lexically_normal();
+  if (!std::filesystem::is_regular_file(path, ignored)) {
+    value.error(fmt::format("no such file: '{}'", path.string()));
+    return std::nullopt;
+  }
+  return path.string();
 }
 
 }  // namespace regodem

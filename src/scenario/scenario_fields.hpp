@@ -68,6 +68,11 @@ std::optional<std::string> read_reference(const YamlValue& value,
                                           const std::vector<std::string>& known,
                                           std::string_view what);
 
+/// An input file named by `value`: relative to the scenario file (so a scenario and its
+/// files travel together), returned absolute (so whoever opens it later need not know
+/// where the scenario was); a missing file is reported.
+std::optional<std::string> read_input_file(const YamlValue& value, const ScenarioReferences& references);
+
 /// An axis-aligned box around a shape.
 struct Bounds {
   Vec3 min_m, max_m;

@@ -36,6 +36,11 @@ void check_heat_requirements(const ScenarioSpec& spec, const ScenarioReferences&
                              ScenarioDiagnostics& diagnostics);                     // read_heat.cpp
 void read_walls(const YamlSection& root, const ScenarioReferences& references,
                 ScenarioSpec& spec);                                                // read_walls.cpp
+/// A `type: mesh` wall's file, scale, placement and grid (read_mesh_wall.cpp).
+void read_mesh_shape(const YamlSection& section, const ScenarioReferences& references, WallSpec& wall);
+/// An STL or OBJ file, by its extension; throws InputError.
+TriangleMesh read_mesh_file(const std::string& path);
+MeshTransform mesh_transform(const MeshPlacementSpec& placement);
 void read_insertions(const YamlSection& root, const ScenarioReferences& references,
                      ScenarioSpec& spec);                                           // read_insertions.cpp
 

@@ -6,12 +6,14 @@
 // domain) can still name the line.
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/vec3.hpp"
+#include "geometry/triangle_mesh.hpp"
 
 namespace regodem {
 
@@ -79,9 +81,21 @@ struct MotionSpec {
   Vec3 axis_point_m;
   double start_s = 0.0;
   double stop_s = std::numeric_limits<double>::infinity();
+  // A drill's depth: depth_at_start_m plus the distance fed along `velocity`; the feed
+  // stops when the depth reaches stop_at_depth_m (rotation goes on until stop_s).
+  double depth_at_start_m = 0.0;
+  double stop_at_depth_m = std::numeric_limits<double>::infinity();
 };
 
-enum class WallShape { plane, disk, cylinder, sieve };
+/// Where a mesh goes: x -> R(axis, angle) (scale x) + translation.
+struct MeshPlacementSpec {
+  double scale = 1.0;  // e.g. 0.001 for a file in millimetres
+  Vec3 rotation_axis{0.0, 0.0, 1.0};
+  double rotation_angle_rad = 0.0;
+  Vec3 translation_m;
+};
+
+enum class WallShape { plane, disk, cylinder, sieve, mesh };
 enum class CylinderSide { inside, outside, both };
 
 enum class WallThermalModeSpec { adiabatic, fixed, lumped };
@@ -121,6 +135,12 @@ struct WallSpec {
   // cap_bottom closes the lowest one (the paper's segment 10). Each segment is its own
   // wall body "name[k]" with its own temperature.
   int segments = 1;
+  // mesh: triangles from an STL (binary or ASCII) or OBJ file, placed; point_m is the
+  // placement's translation (the default rotation axis point).
+  std::string mesh_file;  // absolute
+  MeshPlacementSpec placement;
+  double mesh_grid_cell_m = 0.0;  // 0: the mesh's mean edge length
+  std::shared_ptr<const TriangleMesh> mesh;  // read and placed (world frame at the start)
   WallThermalSpec thermal;
   MotionSpec motion;
   SourceLocation where;
@@ -183,7 +203,7 @@ struct OverrideSpec {
   SourceLocation where;
 };
 
-enum class StageEnd { time, settled };
+enum class StageEnd { time, settled, depth };
 
 /// How a stage moves heat. coupled: with the mechanics, every step. The others freeze the
 /// mechanics (particles do not move) and advance temperatures alone on the contact
@@ -201,6 +221,9 @@ struct StageSpec {
   double settled_kinetic_energy_J = 0.0;
   double min_duration_s = 0.0;
   double max_duration_s = std::numeric_limits<double>::infinity();
+  // end == depth: until wall `depth_wall` has reached `depth_m` (its motion's depth).
+  std::string depth_wall;
+  double depth_m = 0.0;
   std::vector<OverrideSpec> overrides;
   ThermalStepping heat_stepping = ThermalStepping::coupled;
   double thermal_time_step_s = 0.0;   // static modes; 0 = stability_fraction x the explicit limit

@@ -29,6 +29,10 @@ struct Stage {
   double settled_kinetic_energy_J = 0.0;  // until_settled: mean per particle
   double min_duration_s = 0.0;
   double max_duration_s = std::numeric_limits<double>::infinity();
+  // Ends when wall body depth_body reaches depth_m (WallBody::depth_m), if >= 0.
+  int depth_body = -1;
+  double depth_m = 0.0;
+  bool ends_at_depth() const { return depth_body >= 0; }
   std::vector<PairOverride> overrides;
   // Static-bed stages (anything but coupled) freeze the mechanics: particles and walls
   // stay put and only temperatures advance, with their own step. They end by time.

@@ -67,6 +67,26 @@ void check_coupled_heat_step(Simulation& sim) {
 }
 
 bool conducting_wall(const ThermalWall& w) { return w.mode != WallThermalMode::adiabatic; }
+bool fed(const WallBody& w) { return norm2(w.feed_direction) > 0.0; }
+bool spun(const WallBody& w) { return norm2(w.spin_axis) > 0.0; }
+
+/// A stage that ends at a drill depth: the time its wall needs to get there at its
+/// feed speed (infinite when it is not moving).
+double time_to_depth_s(const Simulation& sim, const Stage& stage) {
+  const WallBody& wall = sim.walls.bodies[static_cast<std::size_t>(stage.depth_body)];
+  const double speed = norm(wall.motion.velocity_m_per_s);
+  const double to_go = std::max(0.0, stage.depth_m - wall.depth_m());
+  return to_go == 0.0 ? 0.0 : speed > 0.0 ? to_go / speed : std::numeric_limits<double>::infinity();
+}
+
+bool feed_ended(const Simulation& sim, const Stage& stage) {
+  const WallMotion& motion = sim.walls.bodies[static_cast<std::size_t>(stage.depth_body)].motion;
+  return norm2(motion.velocity_m_per_s) == 0.0 || sim.time_s() >= motion.stop_s;
+}
+
+bool reached_depth(const Simulation& sim, const Stage& stage) {
+  return sim.walls.bodies[static_cast<std::size_t>(stage.depth_body)].depth_m() >= stage.depth_m * (1.0 - 1e-12);
+}
 
 }  // namespace
 
@@ -88,6 +108,9 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
   for (const WallBody& wall : sim.walls.bodies) {
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".force_" + axis, "N"});
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".torque_" + axis, "N m"});
+    // A drilling engineer's first look: depth, thrust against the feed, torque against the turn.
+    if (fed(wall)) columns.insert(columns.end(), {{wall.name + ".depth", "m"}, {wall.name + ".thrust", "N"}});
+    if (spun(wall)) columns.push_back({wall.name + ".drive_torque", "N m"});
   }
   if (!sim.heat_enabled()) return columns;
   columns.insert(columns.end(), {{"temperature_mean", "K"},
@@ -126,6 +149,8 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
   for (const WallBody& wall : sim.walls.bodies) {
     row.insert(row.end(), {wall.force_N.x, wall.force_N.y, wall.force_N.z});
     row.insert(row.end(), {wall.torque_N_m.x, wall.torque_N_m.y, wall.torque_N_m.z});
+    if (fed(wall)) row.insert(row.end(), {wall.depth_m(), -dot(wall.force_N, wall.feed_direction)});
+    if (spun(wall)) row.push_back(-dot(wall.torque_N_m, wall.spin_axis));
   }
   if (!sim.heat_enabled()) return row;
   double sum = 0.0, lowest = std::numeric_limits<double>::quiet_NaN(), highest = lowest;
@@ -176,7 +201,9 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     info.count = plan.stages.size();
     info.start_time_s = sim.time_s();
     info.ends_when_settled = stage.until_settled;
-    info.planned_end_time_s = info.start_time_s + (stage.until_settled ? stage.max_duration_s : stage.duration_s);
+    info.planned_end_time_s = info.start_time_s + (stage.ends_at_depth()   ? time_to_depth_s(sim, stage)
+                                                   : stage.until_settled ? stage.max_duration_s
+                                                                         : stage.duration_s);
     observer.stage_started(info);
     const MaterialTable original_pairs = apply_overrides(sim, stage.overrides);
 
@@ -202,14 +229,19 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     const double step_s = frozen ? frozen->time_step_s() : dt;
     const double stage_end_s = info.start_time_s + stage.duration_s;
     const std::uint64_t check_every = frozen ? 1 : kCheckEverySteps;
+    const bool ends_by_time = !stage.until_settled && !stage.ends_at_depth();
     const std::uint64_t planned_steps =
-        stage.until_settled ? 0
+        stage.ends_at_depth() ? static_cast<std::uint64_t>(std::ceil(time_to_depth_s(sim, stage) / dt))
+        : stage.until_settled ? 0
         : frozen            ? static_cast<std::uint64_t>(std::ceil(stage.duration_s / step_s - 1e-9))
                             : static_cast<std::uint64_t>(std::llround(stage.duration_s / dt));
     const std::uint64_t min_steps = static_cast<std::uint64_t>(std::llround(stage.min_duration_s / dt));
     const double max_steps_d = stage.max_duration_s / dt;
     double sample_interval = plan.sample_interval_s;
-    if (sample_interval <= 0.0) sample_interval = stage.until_settled ? 0.01 : stage.duration_s / 100.0;
+    if (sample_interval <= 0.0)
+      sample_interval = stage.until_settled    ? 0.01
+                        : stage.ends_at_depth() ? std::max(time_to_depth_s(sim, stage), dt) / 100.0
+                                                : stage.duration_s / 100.0;
     sample_interval = std::max(sample_interval, step_s);  // a zero-length stage still samples once
     double next_sample_s = sim.time_s();
     auto last_progress_clock = Clock::now();
@@ -243,7 +275,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           if (!frozen) check_coupled_heat_step(sim);  // the contacts have changed since the last check
         }
 
-        if (!stage.until_settled && done >= planned_steps) break;
+        if (ends_by_time && done >= planned_steps) break;
+        if (stage.ends_at_depth() && reached_depth(sim, stage)) break;
         if (done % check_every == 0) {
           if (stage.until_settled && insertions_done && done >= min_steps &&
               kinetic_energy_per_particle(sim) < stage.settled_kinetic_energy_J)
@@ -253,6 +286,15 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
                 "stage '{}' did not settle within its max_duration of {:.4g} s: kinetic energy per particle is "
                 "{:.3g} J, the threshold {:.3g} J. Raise max_duration or the threshold.",
                 stage.name, stage.max_duration_s, kinetic_energy_per_particle(sim), stage.settled_kinetic_energy_J);
+            result = StageResult::failed;
+            break;
+          }
+          if (stage.ends_at_depth() && feed_ended(sim, stage)) {
+            const WallBody& wall = sim.walls.bodies[static_cast<std::size_t>(stage.depth_body)];
+            failure = fmt::format(
+                "stage '{}' cannot end: wall '{}' stopped feeding at a depth of {:.6g} m, short of {:.6g} m (its "
+                "motion's 'stop' time or 'stop_at_depth' comes first)",
+                stage.name, wall.name, wall.depth_m(), stage.depth_m);
             result = StageResult::failed;
             break;
           }
@@ -277,8 +319,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             snap.wall_s = seconds_since(run_start);
             snap.steps_per_s = steps_per_s;
             snap.particle_steps_per_s = steps_per_s * static_cast<double>(sim.particles.size());
+            const double steps_left = stage.ends_at_depth() ? time_to_depth_s(sim, stage) / dt
+                                                            : static_cast<double>(planned_steps) - static_cast<double>(done);
             snap.estimated_remaining_s =
-                stage.until_settled || stage_rate <= 0.0 ? -1.0 : static_cast<double>(planned_steps - done) / stage_rate;
+                stage.until_settled || stage_rate <= 0.0 || std::isinf(steps_left) ? -1.0 : steps_left / stage_rate;
             snap.kinetic_energy_per_particle_J = kinetic_energy_per_particle(sim);
             observer.progress(snap);
           }

@@ -21,6 +21,7 @@
 #include "human_format.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_directory.hpp"
+#include "io/stl_writer.hpp"
 #include "io/summary_json_writer.hpp"
 #include "progress_display.hpp"
 #include "regodem/build_info.hpp"
@@ -60,6 +61,20 @@ std::string overrides_file_content(const std::vector<std::string>& overrides) {
   std::string content;
   for (const std::string& override_text : overrides) content += override_text + '\n';
   return content;
+}
+
+/// Generated meshes (augers) are written as '<wall>.stl', so users can look at the
+/// drill they simulated (in its placement at the start).
+std::vector<std::string> generated_mesh_files(const ScenarioSpec& spec) {
+  std::vector<std::string> names;
+  for (const WallSpec& wall : spec.walls)
+    if (wall.auger && wall.mesh) names.push_back(wall.name + ".stl");
+  return names;
+}
+
+void write_generated_meshes(const fs::path& directory, const ScenarioSpec& spec) {
+  for (const WallSpec& wall : spec.walls)
+    if (wall.auger && wall.mesh) write_stl(directory / (wall.name + ".stl"), *wall.mesh, StlFormat::binary, wall.name);
 }
 
 /// The copy of the scenario and the --set values that together reproduce the run.
@@ -182,13 +197,15 @@ int run_scenario(const RunOptions& options) {
     // only after, so that a scenario that cannot run leaves a previous run's outputs.
     check_output_directory(directory, options.overwrite);
     prepared.emplace(PreparedRun::build(*spec, threads));
-    prepare_output_directory(directory, options.overwrite,
-                             {time_series_file, summary_file, scenario_copy_file, overrides_file});
+    std::vector<std::string> outputs{time_series_file, summary_file, scenario_copy_file, overrides_file};
+    for (const std::string& mesh_file : generated_mesh_files(*spec)) outputs.push_back(mesh_file);
+    prepare_output_directory(directory, options.overwrite, outputs);
   } catch (const InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
   }
   write_reproduction_files(directory, options);
+  write_generated_meshes(directory, *spec);
 
   ProgressDisplay display(stderr, ::isatty(::fileno(stderr)) == 1, spec->output.progress_interval_s);
   std::vector<std::string> stage_names;

@@ -71,12 +71,21 @@ void WallSet::add_mesh(std::uint32_t body, TriangleMesh mesh, MaterialIndex mate
   meshes.emplace_back(std::move(mesh), body, material, cell_size_m);
 }
 
-double WallSet::mesh_reach_m(std::uint32_t body) const {
-  const WallBody& b = bodies[body];
+double WallSet::spin_reach_m(std::uint32_t body) {
+  WallBody& b = bodies[body];
+  // The spin axis in the body's reference frame stays put while the body turns about
+  // it and shifts along with it, so the farthest vertex from it is found once.
+  const Vec3 axis = normalized(multiply_transposed(b.pose.rotation, b.motion.angular_velocity_rad_per_s));
+  const Vec3 point = b.pose.to_reference(b.motion.axis_point_m);
+  if (b.spin_reach_cached && axis == b.spin_reach_axis && point == b.spin_reach_point) return b.spin_reach_m;
   double reach = 0.0;
   for (const MeshWall& m : meshes)
     if (m.body == body)
-      reach = std::max(reach, norm(b.pose.to_world(m.bounding_centre_m) - b.motion.axis_point_m) + m.bounding_radius_m);
+      for (const Vec3& v : m.mesh.vertices) reach = std::max(reach, norm(cross(v - point, axis)));
+  b.spin_reach_cached = true;
+  b.spin_reach_axis = axis;
+  b.spin_reach_point = point;
+  b.spin_reach_m = reach;
   return reach;
 }
 
@@ -93,9 +102,10 @@ void WallSet::advance(double time_s, double dt_s) {
       motion.velocity_m_per_s = {};
     }
     const Vec3 turn = motion.angular_velocity_rad_per_s * dt_s;
-    // A turn moves a mesh's points by up to angle x reach (analytic walls turn about
-    // their own axis: their surface stays where it is).
-    body.displacement_since_build_m += norm(step) + norm(turn) * mesh_reach_m(b);
+    // A turn moves a mesh's points by up to the angle times their farthest distance
+    // from the axis (analytic walls turn about their own axis: their surface stays).
+    if (norm2(turn) > 0.0) body.displacement_since_build_m += norm(turn) * spin_reach_m(b);
+    body.displacement_since_build_m += norm(step);
     body.pose.turn_and_shift(turn, motion.axis_point_m, step);
     body.travel_m += norm(step);
     body.displacement_m += step;

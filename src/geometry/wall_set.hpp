@@ -28,6 +28,11 @@ struct WallBody {
   // Upper bound on how far any surface point moved since the neighbour lists were
   // built: the translation plus, for a turning mesh, the arc its farthest point swept.
   double displacement_since_build_m = 0.0;
+  // Farthest mesh vertex from the spin axis, cached with the axis (reference frame) it
+  // was found for.
+  bool spin_reach_cached = false;
+  Vec3 spin_reach_axis, spin_reach_point;
+  double spin_reach_m = 0.0;
 
   double depth_m() const { return depth_at_start_m + travel_m; }
 };
@@ -68,8 +73,8 @@ class WallSet {
   std::vector<MeshWall> meshes;
 
  private:
-  /// Farthest point of the body's meshes from its rotation axis point (0 without meshes).
-  double mesh_reach_m(std::uint32_t body) const;
+  /// Farthest vertex of the body's meshes from its spin axis (0 without meshes).
+  double spin_reach_m(std::uint32_t body);
 };
 
 }  // namespace regodem

@@ -10,6 +10,8 @@
 namespace regodem {
 namespace {
 
+bool is_mesh(WallShape shape) { return shape == WallShape::mesh || shape == WallShape::auger; }
+
 const std::vector<std::string> kCommonKeys{"name", "type", "material", "motion", "thermal"};
 
 std::vector<std::string> keys_for(WallShape shape) {
@@ -29,6 +31,10 @@ std::vector<std::string> keys_for(WallShape shape) {
       break;
     case WallShape::mesh:
       keys.insert(keys.end(), {"file", "scale", "placement", "grid_cell"});
+      break;
+    case WallShape::auger:
+      keys.insert(keys.end(), {"outer_diameter", "core_diameter", "pitch", "flutes", "flute_thickness", "length",
+                               "tip", "segments_per_turn", "hand", "placement", "grid_cell"});
       break;
   }
   return keys;
@@ -53,6 +59,13 @@ std::vector<std::pair<std::string, std::string>> misplaced_keys(WallShape shape)
               {"center", "a cylinder takes 'base', the centre of its bottom end"},
               {"normal", "a cylinder takes 'axis', from its bottom end to its top"},
               {"segments", "only a sieve has segments"}};
+    case WallShape::auger:
+      return {{"point", "an auger's tip apex is placed by 'placement: {translation: ...}'"},
+              {"base", "an auger's tip apex is placed by 'placement: {translation: ...}'"},
+              {"axis", "an auger points along +z turned by 'placement: {rotation: ...}'"},
+              {"file", "an auger is generated; a drill from a file is 'type: mesh'"},
+              {"diameter", "an auger has 'outer_diameter' and 'core_diameter'"},
+              {"radius", "an auger has 'outer_diameter' and 'core_diameter'"}};
     case WallShape::mesh:
       return {{"point", "a mesh is placed by 'placement: {translation: ..., rotation: ...}'"},
               {"center", "a mesh is placed by 'placement: {translation: ..., rotation: ...}'"},
@@ -96,13 +109,13 @@ void read_motion(const YamlValue& value, WallSpec& wall) {
     const Vec3& omega = motion.angular_velocity_rad_per_s;
     // Analytic walls may only spin about their own symmetry axis (or plane normal);
     // a mesh turns as a rigid body about any axis.
-    if (wall.shape != WallShape::mesh && norm(cross(omega, wall.normal)) > 1e-9 * norm(omega)) {
+    if (!is_mesh(wall.shape) && norm(cross(omega, wall.normal)) > 1e-9 * norm(omega)) {
       spin->error("an analytic wall can turn only about its own axis (its 'axis' or 'normal')");
     }
     // A plane turned about any line along its normal stays in place; a disk or cylinder
     // only about its own axis.
     const Vec3 offset = motion.axis_point_m - wall.point_m;
-    if (wall.shape != WallShape::plane && wall.shape != WallShape::mesh &&
+    if (wall.shape != WallShape::plane && !is_mesh(wall.shape) &&
         norm(cross(offset, wall.normal)) > 1e-9 * (norm(offset) + 1e-3)) {
       (section->has("axis_point") ? *section->get("axis_point") : *spin)
           .error("the rotation axis must pass through the wall's own axis");
@@ -227,7 +240,8 @@ void read_shape(const YamlSection& section, const ScenarioReferences& references
       }
       break;
     }
-    case WallShape::mesh: break;  // read_mesh_shape
+    case WallShape::mesh:
+    case WallShape::auger: break;  // read_mesh_shape
   }
   if (extent) check_inside_domain(section.value(), *extent, references, "the wall");
 }
@@ -350,7 +364,7 @@ std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReference
   wall.where = item.where();
   const auto type_value = section->require("type");
   const auto type =
-      type_value ? type_value->choice({"plane", "disk", "cylinder", "sieve", "mesh"}) : std::nullopt;
+      type_value ? type_value->choice({"plane", "disk", "cylinder", "sieve", "mesh", "auger"}) : std::nullopt;
   if (!type) {
     // Without a shape, still catch keys that no wall takes.
     std::vector<std::string> any_wall_key = keys_for(WallShape::cylinder);
@@ -363,7 +377,8 @@ std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReference
                : *type == "disk"     ? WallShape::disk
                : *type == "cylinder" ? WallShape::cylinder
                : *type == "sieve"    ? WallShape::sieve
-                                     : WallShape::mesh;
+               : *type == "mesh"     ? WallShape::mesh
+                                     : WallShape::auger;
   section->allow_only(keys_for(wall.shape), misplaced_keys(wall.shape));
   const auto name = read_item_name(*section);
   if (name) wall.name = *name;
@@ -371,7 +386,7 @@ std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReference
   if (const auto material = section->get("material")) {
     wall.material = read_reference(*material, references.material_names, "material").value_or("");
   }
-  if (wall.shape == WallShape::mesh)
+  if (is_mesh(wall.shape))
     read_mesh_shape(*section, references, wall);
   else
     read_shape(*section, references, wall);

@@ -122,6 +122,7 @@ const char* shape_name(WallShape shape) {
     case WallShape::cylinder: return "cylinder";
     case WallShape::sieve: return "sieve";
     case WallShape::mesh: return "mesh";
+    case WallShape::auger: return "auger";
   }
   return "wall";
 }
@@ -137,7 +138,7 @@ WallMotion wall_motion(const WallSpec& w) {
   m.stop_s = w.motion.stop_s;
   m.max_travel_m = w.motion.stop_at_depth_m - w.motion.depth_at_start_m;  // infinite without a stop depth
   // A mesh turns as a rigid body about any axis.
-  if (norm2(m.angular_velocity_rad_per_s) == 0.0 || w.shape == WallShape::mesh) return m;
+  if (norm2(m.angular_velocity_rad_per_s) == 0.0 || w.mesh) return m;
   // Analytic shapes may only spin about their own symmetry axis (their shape then
   // stays put); turning them any other way needs a mesh wall.
   const Vec3 axis = normalized(w.normal);
@@ -473,16 +474,20 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                disk_area(w.radius_m) * ((w.cap_bottom ? 1.0 : 0.0) + (w.cap_top ? 1.0 : 0.0));
         break;
       case WallShape::sieve: break;  // expanded above
-      case WallShape::mesh: {
+      case WallShape::mesh:
+      case WallShape::auger: {
         // The mesh's reference frame is its placement at the start (the body's pose is
         // the identity then).
         walls.add_mesh(body, *w.mesh, material, w.mesh_grid_cell_m);
         area = w.mesh->area();
         const Aabb box = w.mesh->bounding_box();
-        lines.push_back(fmt::format("wall '{}': mesh of {} triangles from '{}', spanning ({:.4g}, {:.4g}, {:.4g}) to "
+        lines.push_back(fmt::format("wall '{}': mesh of {} triangles {}, spanning ({:.4g}, {:.4g}, {:.4g}) to "
                                     "({:.4g}, {:.4g}, {:.4g}) m",
-                                    w.name, w.mesh->triangle_count(), w.mesh_file, box.lo_m.x, box.lo_m.y,
-                                    box.lo_m.z, box.hi_m.x, box.hi_m.y, box.hi_m.z));
+                                    w.name, w.mesh->triangle_count(),
+                                    w.auger ? fmt::format("generated (auger, {} flutes, outer diameter {:.4g} m)",
+                                                          w.auger->flutes, w.auger->outer_diameter_m)
+                                            : fmt::format("from '{}'", w.mesh_file),
+                                    box.lo_m.x, box.lo_m.y, box.lo_m.z, box.hi_m.x, box.hi_m.y, box.hi_m.z));
         break;
       }
     }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/vec3.hpp"
+#include "geometry/auger_generator.hpp"
 #include "geometry/triangle_mesh.hpp"
 
 namespace regodem {
@@ -95,7 +96,7 @@ struct MeshPlacementSpec {
   Vec3 translation_m;
 };
 
-enum class WallShape { plane, disk, cylinder, sieve, mesh };
+enum class WallShape { plane, disk, cylinder, sieve, mesh, auger };
 enum class CylinderSide { inside, outside, both };
 
 enum class WallThermalModeSpec { adiabatic, fixed, lumped };
@@ -135,12 +136,15 @@ struct WallSpec {
   // cap_bottom closes the lowest one (the paper's segment 10). Each segment is its own
   // wall body "name[k]" with its own temperature.
   int segments = 1;
-  // mesh: triangles from an STL (binary or ASCII) or OBJ file, placed; point_m is the
-  // placement's translation (the default rotation axis point).
-  std::string mesh_file;  // absolute
+  // mesh: triangles from an STL (binary or ASCII) or OBJ file, placed; auger: a drill
+  // generated from its dimensions (geometry/auger_generator), tip apex at the
+  // placement's translation, axis along the placement's rotation of +z. point_m is the
+  // translation and normal the turned +z (the default axis point and spin axis).
+  std::string mesh_file;  // absolute; empty for a generated mesh
   MeshPlacementSpec placement;
   double mesh_grid_cell_m = 0.0;  // 0: the mesh's mean edge length
-  std::shared_ptr<const TriangleMesh> mesh;  // read and placed (world frame at the start)
+  std::shared_ptr<const TriangleMesh> mesh;  // read or generated, and placed (world frame at the start)
+  std::optional<AugerSpec> auger;
   WallThermalSpec thermal;
   MotionSpec motion;
   SourceLocation where;

@@ -70,10 +70,10 @@ TEST(WallSetMotion, TurningMeshCountsItsSweptArc) {
   builder.add_triangle({0.0, 0.0, 0.0}, {0.02, 0.0, 0.0}, {0.0, 0.01, 0.0});
   walls.add_mesh(body, std::move(builder).finish("paddle"), 0);
   walls.advance(0.0, 1e-3);
-  // Bounding sphere: centre (0.01, 0.005, 0), radius |(0.01, 0.005)| = 0.01118; its far
-  // side from the axis is 2 x 0.01118 = 0.02236 m; the arc is 0.01 rad of it.
-  const double reach = 2.0 * std::hypot(0.01, 0.005);
-  EXPECT_NEAR(walls.max_displacement_since_build_m(), 0.01 * reach, 1e-15);
+  // The farthest vertex from the z axis is (0.02, 0, 0): an arc of 0.01 rad x 0.02 m.
+  EXPECT_NEAR(walls.max_displacement_since_build_m(), 0.01 * 0.02, 1e-15);
+  walls.advance(1e-3, 1e-3);
+  EXPECT_NEAR(walls.max_displacement_since_build_m(), 2 * 0.01 * 0.02, 1e-15);
   walls.mark_neighbor_build();
   EXPECT_EQ(walls.max_displacement_since_build_m(), 0.0);
 }

@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <unistd.h>
 
@@ -125,6 +126,9 @@ struct BedOptions {
   bool heat = false;
   double time_scale_factor = 1.0;
   double real_shear_modulus_Pa = 0.0;  // conduction's contact radii from this modulus (0: the same)
+  // A drill (mesh wall, adiabatic) placed as given, moving as given.
+  std::optional<TriangleMesh> drill;
+  WallMotion drill_motion;
 };
 
 inline Simulation paper_bed_simulation(const std::vector<ParticleRecord>& bed, const BedOptions& options) {
@@ -154,15 +158,21 @@ inline Simulation paper_bed_simulation(const std::vector<ParticleRecord>& bed, c
   hot_plate.mode = WallThermalMode::fixed;
   hot_plate.prescribed_temperature_K = TimeTable(973.15);
   SimulationSettings s;
+  const double domain_top = options.drill ? std::max(top, options.drill->bounding_box().hi_m.z) : top;
   s.domain = {{-barrel_radius_m - 1e-3, -barrel_radius_m - 1e-3, -1e-3},
-              {barrel_radius_m + 1e-3, barrel_radius_m + 1e-3, top + 5e-3}};
+              {barrel_radius_m + 1e-3, barrel_radius_m + 1e-3, domain_top + 5e-3}};
   s.time_step_s = 0.2 * rayleigh_time_s(kRadius, kDensity, shear_modulus_Pa, kPoisson);
   s.min_particle_radius_m = kRadius;
   s.neighbor_skin_m = 0.2 * s.min_particle_radius_m;
   s.threads = options.threads;
   s.heat.enabled = options.heat;
   s.heat.time_scale_factor = options.time_scale_factor;
-  Simulation sim(std::move(materials), std::move(walls), s, {ThermalWall{}, hot_plate});
+  std::vector<ThermalWall> thermal{ThermalWall{}, hot_plate};
+  if (options.drill) {
+    walls.add_mesh(walls.add_body("drill", options.drill_motion), *options.drill, 0);
+    thermal.emplace_back();
+  }
+  Simulation sim(std::move(materials), std::move(walls), s, std::move(thermal));
   sim.particles.reserve(bed.size());
   for (const ParticleRecord& r : bed) {
     NewParticle p;

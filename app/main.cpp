@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
                 "Reuse a non-empty OUTDIR: replace the files a run writes, leave other files");
   run->footer(
       "Writes OUTDIR/time_series.csv (header: name [unit]), OUTDIR/summary.json, OUTDIR/scenario.yaml\n"
-      "(a copy of SCENARIO) and OUTDIR/overrides.txt (the --set values). Ctrl-C stops the run\n"
+      "(a copy of SCENARIO) and OUTDIR/overrides.txt (the --set values); with output.snapshots, ParaView\n"
+      "files OUTDIR/particles.pvd, OUTDIR/walls.pvd and OUTDIR/vtk/*.vtp. Ctrl-C stops the run\n"
       "cleanly and still writes the outputs; a second Ctrl-C ends it at once.");
 
   ValidateOptions validate_options;

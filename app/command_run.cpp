@@ -30,6 +30,8 @@
 #include "scenario/scenario_reader.hpp"
 #include "signal_handling.hpp"
 #include "sim/simulation.hpp"
+#include "sim/snapshot_capture.hpp"
+#include "sim/stage_plan.hpp"
 
 namespace regodem::app {
 namespace {
@@ -197,7 +199,13 @@ int run_scenario(const RunOptions& options) {
     // only after, so that a scenario that cannot run leaves a previous run's outputs.
     check_output_directory(directory, options.overwrite);
     prepared.emplace(PreparedRun::build(*spec, threads));
-    std::vector<std::string> outputs{time_series_file, summary_file, scenario_copy_file, overrides_file};
+    std::vector<std::string> outputs{time_series_file,
+                                     summary_file,
+                                     scenario_copy_file,
+                                     overrides_file,
+                                     SnapshotSeries::particles_collection,
+                                     SnapshotSeries::walls_collection,
+                                     SnapshotSeries::data_folder};
     for (const std::string& mesh_file : generated_mesh_files(*spec)) outputs.push_back(mesh_file);
     prepare_output_directory(directory, options.overwrite, outputs);
   } catch (const InputError& error) {
@@ -211,6 +219,11 @@ int run_scenario(const RunOptions& options) {
   std::vector<std::string> stage_names;
   for (const StageSpec& stage : spec->stages) stage_names.push_back(stage.name);
   RunRecorder recorder(directory / time_series_file, display, stage_names);
+  std::optional<SimulationSnapshotWriter> snapshots;
+  if (const SnapshotSpec& snap = spec->output.snapshots; snap.enabled) {
+    snapshots.emplace(directory, VtpOptions{snap.compress}, snap.walls, prepared->plan().region_names);
+    recorder.write_snapshots_with(&*snapshots);
+  }
 
   const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   const auto wall_start = std::chrono::steady_clock::now();

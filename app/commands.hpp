@@ -27,7 +27,19 @@ struct ValidateOptions {
   std::vector<std::string> overrides;
 };
 
+/// `regodem plot` (command_plot.cpp).
+struct PlotOptions {
+  std::vector<std::string> run_directories;  // OUTDIRs of runs, overlaid
+  std::string labels;                        // comma-separated, one per run; empty: folder names
+  std::string output_directory;              // empty: FIRST_OUTDIR/plots
+  bool section = false;                      // also the temperature field on a section
+  std::string section_axis = "z";
+  std::string section_through = "0,0,0";     // a point on the axis, metres
+  double section_thickness_m = 0.0;          // 0: cut spheres; > 0: a slab
+};
+
 int run_scenario(const RunOptions& options);
+int plot_runs(const PlotOptions& options);
 int validate_scenario(const ValidateOptions& options);
 int print_info();
 

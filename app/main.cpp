@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
                 "Reuse a non-empty OUTDIR: replace the files a run writes, leave other files");
   run->footer(
       "Writes OUTDIR/time_series.csv (header: name [unit]), OUTDIR/summary.json, OUTDIR/scenario.yaml\n"
-      "(a copy of SCENARIO) and OUTDIR/overrides.txt (the --set values). Ctrl-C stops the run\n"
+      "(a copy of SCENARIO) and OUTDIR/overrides.txt (the --set values); with output.snapshots, ParaView\n"
+      "files OUTDIR/particles.pvd, OUTDIR/walls.pvd and OUTDIR/vtk/*.vtp. Ctrl-C stops the run\n"
       "cleanly and still writes the outputs; a second Ctrl-C ends it at once.");
 
   ValidateOptions validate_options;
@@ -65,6 +66,30 @@ int main(int argc, char** argv) {
       ->type_name("KEY.PATH=VALUE")
       ->allow_extra_args(false);
 
+  PlotOptions plot_options;
+  CLI::App* plot = app.add_subcommand("plot", "PNG figures from the CSV files and snapshots of one or more runs");
+  plot->add_option("OUTDIR", plot_options.run_directories, "Output directories of runs (several: overlaid)")
+      ->required();
+  plot->add_option("--labels", plot_options.labels, "Legend labels, comma-separated, one per OUTDIR")
+      ->type_name("A,B,...");
+  plot->add_option("--out", plot_options.output_directory, "Folder for the PNG files (default: FIRST_OUTDIR/plots)")
+      ->type_name("DIR");
+  plot->add_flag("--section", plot_options.section,
+                 "Also draw the particle temperature on a plane through an axis, from the latest snapshot");
+  plot->add_option("--section-axis", plot_options.section_axis, "The axis the plane holds (default z)")
+      ->check(CLI::IsMember({"x", "y", "z"}));
+  plot->add_option("--section-through", plot_options.section_through,
+                   "A point on the axis, in metres (default 0,0,0)")
+      ->type_name("X,Y,Z");
+  plot->add_option("--section-thickness", plot_options.section_thickness_m,
+                   "0: show the disks the plane cuts from the spheres (default); > 0: every particle within "
+                   "a slab this thick, in metres")
+      ->check(CLI::NonNegativeNumber);
+  plot->footer(
+      "Writes temperature.png, wall_temperatures.png, energy_balance.png, wall_forces.png, mechanics.png, one PNG per\n"
+      "further CSV (profiles), and section.png with --section; each 960 x 600 pixels. Needs /usr/bin/python3 with\n"
+      "matplotlib (REGODEM_PYTHON names another). See docs/outputs.md.");
+
   CLI::App* info = app.add_subcommand(
       "info", "Print the version, build type, compiler, OpenMP threads and library versions");
 
@@ -74,7 +99,7 @@ int main(int argc, char** argv) {
     // CLI11 reports a misspelt subcommand only as "a subcommand is required".
     const std::vector<std::string> unparsed = app.remaining();
     if (app.get_subcommands().empty() && !unparsed.empty() && !unparsed.front().starts_with('-')) {
-      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, validate and info (see regodem --help)\n",
+      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, validate, plot and info (see regodem --help)\n",
                  unparsed.front());
       return exit_status::bad_input;
     }
@@ -87,6 +112,7 @@ int main(int argc, char** argv) {
     if (*run) return run_scenario(run_options);
     if (*validate) return validate_scenario(validate_options);
     if (*info) return print_info();
+    if (*plot) return plot_runs(plot_options);
   } catch (const regodem::InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;

@@ -37,6 +37,10 @@ void RunRecorder::sample(const std::vector<double>& row) {
   if (time_series_) time_series_->write_row(row);
 }
 
+void RunRecorder::snapshot(const Simulation& sim) {
+  if (snapshots_ != nullptr) snapshots_->write(sim);
+}
+
 void RunRecorder::notice(const std::string& message) {
   notices_.push_back(message);
   display_.notice(message);

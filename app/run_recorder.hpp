@@ -12,6 +12,7 @@
 #include "io/summary_json_writer.hpp"
 #include "progress_display.hpp"
 #include "sim/run_observer.hpp"
+#include "sim/snapshot_capture.hpp"
 
 namespace regodem::app {
 
@@ -26,6 +27,7 @@ class RunRecorder final : public RunObserver {
   void stage_started(const StageInfo& stage) override;
   void progress(const ProgressSnapshot& snapshot) override;
   void sample(const std::vector<double>& row) override;
+  void snapshot(const Simulation& sim) override;
   void notice(const std::string& message) override;
   void stage_finished(const StageInfo& stage, StageResult result, const std::string& message) override;
 
@@ -34,6 +36,9 @@ class RunRecorder final : public RunObserver {
   /// `result_if_unfinished`.
   std::vector<StageSummary> stage_summaries(double final_time_s,
                                             StageResult result_if_unfinished) const;
+  /// Where snapshots go; without one, due snapshots are not written.
+  void write_snapshots_with(SimulationSnapshotWriter* writer) { snapshots_ = writer; }
+
   /// The stage running or last run, if any started.
   std::optional<StageInfo> current_stage() const { return current_stage_; }
   /// The latest progress report, if any came.
@@ -46,6 +51,7 @@ class RunRecorder final : public RunObserver {
   std::filesystem::path time_series_path_;
   ProgressDisplay& display_;
   std::unique_ptr<CsvTimeSeriesWriter> time_series_;
+  SimulationSnapshotWriter* snapshots_ = nullptr;
   std::vector<StageSummary> stages_;
   std::optional<StageInfo> current_stage_;
   std::optional<ProgressSnapshot> last_snapshot_;

@@ -9,4 +9,5 @@ $SUDO apt-get update -q
 $SUDO apt-get install -y -q --no-install-recommends \
   g++ cmake ninja-build pkg-config \
   libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev libeigen3-dev nlohmann-json3-dev \
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev \
+  zlib1g-dev python3-vtk9 python3-matplotlib

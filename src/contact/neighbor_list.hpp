@@ -97,4 +97,17 @@ class NeighborList {
   std::vector<std::vector<std::uint32_t>> thread_mesh_walls_, thread_mesh_triangles_;
 };
 
+/// Calls visit(mesh_wall, begin, end) for each run of particle i's mesh entries that
+/// belong to one mesh wall: entries [begin, end) are that wall's triangles.
+template <class Visit>
+void for_each_mesh_run(const NeighborList& list, std::size_t i, Visit&& visit) {
+  const std::uint32_t last = list.mesh_offset[i + 1];
+  for (std::uint32_t g = list.mesh_offset[i]; g < last;) {
+    std::uint32_t g_end = g + 1;
+    while (g_end < last && list.mesh_wall[g_end] == list.mesh_wall[g]) ++g_end;
+    visit(list.mesh_wall[g], g, g_end);
+    g = g_end;
+  }
+}
+
 }  // namespace regodem

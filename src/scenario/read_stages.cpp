@@ -223,7 +223,7 @@ void read_output(const YamlSection& root, ScenarioSpec& spec) {
   if (!value) return;
   const auto section = value->section();
   if (!section) return;
-  section->allow_only({"interval", "progress_interval"});
+  section->allow_only({"interval", "progress_interval", "snapshots"});
   spec.output.interval_s = read_checked_quantity(*section, "interval", Dimension::time,
                                                  Presence::optional, is_positive,
                                                  "be greater than 0")
@@ -232,6 +232,7 @@ void read_output(const YamlSection& root, ScenarioSpec& spec) {
       read_checked_quantity(*section, "progress_interval", Dimension::time, Presence::optional,
                             is_positive, "be greater than 0")
           .value_or(spec.output.progress_interval_s);
+  if (const auto snapshots = section->get("snapshots")) read_snapshots(*snapshots, spec.output);
 }
 
 }  // namespace regodem

@@ -581,6 +581,19 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     impl.plan.stages.push_back(std::move(stage));
   }
   impl.plan.sample_interval_s = spec.output.interval_s;
+  impl.plan.region_names = tags;
+  if (const SnapshotSpec& snap = spec.output.snapshots; snap.enabled) {
+    SnapshotSchedule& schedule = impl.plan.snapshots;
+    schedule.trigger = snap.every_steps > 0 ? SnapshotSchedule::Trigger::steps : SnapshotSchedule::Trigger::time;
+    schedule.interval_s = snap.interval_s;
+    schedule.every_steps = snap.every_steps;
+    schedule.at_stage_end = snap.at_stage_end;
+    lines.push_back(snap.every_steps > 0
+                        ? fmt::format("snapshots (ParaView) every {} steps{}", snap.every_steps,
+                                      snap.at_stage_end ? " and at the end of each stage" : "")
+                        : fmt::format("snapshots (ParaView) every {:.4g} s of simulated time{}", snap.interval_s,
+                                      snap.at_stage_end ? " and at the end of each stage" : ""));
+  }
   impl.plan.seed = spec.seed;
   return run;
 }

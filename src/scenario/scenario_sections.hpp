@@ -28,6 +28,7 @@ void read_interactions(const YamlSection& root, const ScenarioReferences& refere
 void read_stages(const YamlSection& root, const ScenarioReferences& references,
                  ScenarioSpec& spec);                                               // read_stages.cpp
 void read_output(const YamlSection& root, ScenarioSpec& spec);                    // read_stages.cpp
+void read_snapshots(const YamlValue& value, OutputSpec& output);                  // read_snapshots.cpp
 void read_heat(const YamlSection& root, ScenarioReferences& references,
                ScenarioSpec& spec);                                                 // read_heat.cpp
 /// Checks that span sections once all are read: thermal properties of the particle

@@ -244,9 +244,21 @@ struct HeatSpec {
   SourceLocation where;
 };
 
+/// ParaView snapshots (`output.snapshots`): by simulated time or by steps.
+struct SnapshotSpec {
+  bool enabled = false;           // the block is present and valid
+  double interval_s = 0.0;        // > 0: every interval of simulated time
+  std::uint64_t every_steps = 0;  // > 0: every so many steps
+  bool at_stage_end = true;       // one more at the end of each stage
+  bool walls = true;              // the walls series too
+  bool compress = true;           // zlib inside the .vtp
+  SourceLocation where;
+};
+
 struct OutputSpec {
   double interval_s = 0.0;        // time-series sampling interval; 0 = 100 samples per stage
   double progress_interval_s = 2.0;  // wall-clock seconds between progress lines
+  SnapshotSpec snapshots;
 };
 
 struct DomainSpec {

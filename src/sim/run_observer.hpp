@@ -10,6 +10,8 @@
 
 namespace regodem {
 
+class Simulation;
+
 struct StageInfo {
   std::string name;
   std::size_t index = 0;   // 0-based
@@ -53,6 +55,9 @@ class RunObserver {
   virtual void progress(const ProgressSnapshot& /*snapshot*/) {}
   /// One row of the time series, values in the order of columns().
   virtual void sample(const std::vector<double>& /*row*/) {}
+  /// A snapshot (ParaView files) is due by the plan's SnapshotSchedule: the observer
+  /// reads what it needs from the simulation, which does not change meanwhile.
+  virtual void snapshot(const Simulation& /*sim*/) {}
   /// A message worth telling the user (an insertion region that is full, ...).
   virtual void notice(const std::string& /*message*/) {}
   virtual void stage_finished(const StageInfo& /*stage*/, StageResult /*result*/,

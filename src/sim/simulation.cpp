@@ -251,8 +251,6 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const std::uint32_t* __restrict wall_offset = neighbors_.wall_offset.data();
   const std::uint32_t* __restrict wall_primitive = neighbors_.wall_primitive.data();
   Vec3* __restrict wall_history = neighbors_.wall_tangential_history_m.data();
-  const std::uint32_t* __restrict mesh_offset = neighbors_.mesh_offset.data();
-  const std::uint32_t* __restrict mesh_wall = neighbors_.mesh_wall.data();
   const std::uint32_t* __restrict mesh_triangle = neighbors_.mesh_triangle.data();
   Vec3* __restrict mesh_history = neighbors_.mesh_tangential_history_m.data();
   const MeshWall* meshes = walls.meshes.data();
@@ -421,18 +419,15 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 
       // Mesh walls: the entries of one mesh form a run; its touches are counted once
       // per face, edge or vertex (MeshTouchFinder).
-      for (std::uint32_t g = mesh_offset[i]; g < mesh_offset[i + 1];) {
-        std::uint32_t g_end = g + 1;
-        while (g_end < mesh_offset[i + 1] && mesh_wall[g_end] == mesh_wall[g]) ++g_end;
-        const MeshWall& mesh = meshes[mesh_wall[g]];
+      for_each_mesh_run(neighbors_, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
+        const MeshWall& mesh = meshes[wall_index];
         finder.find(mesh, bodies[mesh.body].pose, mesh_triangle + g, g_end - g, xi, ri, touches);
         Vec3* spring = mesh_history + g;
         carry_mesh_springs(mesh.mesh, mesh_triangle + g, g_end - g, touches, spring, touched);
         for (const MeshTouch& touch : touches)
           touch_wall(touch.distance_m, touch.normal, touch.contact_point_m, mesh.material, mesh.body,
                      spring[touch.entry]);
-        g = g_end;
-      }
+      });
       force[i] += force_i;
       torque[i] += torque_i;
       if constexpr (Heat) heat[i] += heat_i;

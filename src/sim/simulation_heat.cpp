@@ -141,15 +141,12 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
       const WallProximity prox = closest_wall_point(wall, particles.position_m[i]);
       if (prox.candidate && prox.distance_m < ri) link_wall(prox.distance_m, wall.material, wall.body);
     }
-    for (std::uint32_t g = nl.mesh_offset[i]; g < nl.mesh_offset[i + 1];) {
-      std::uint32_t g_end = g + 1;
-      while (g_end < nl.mesh_offset[i + 1] && nl.mesh_wall[g_end] == nl.mesh_wall[g]) ++g_end;
-      const MeshWall& mesh = walls.meshes[nl.mesh_wall[g]];
+    for_each_mesh_run(nl, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
+      const MeshWall& mesh = walls.meshes[wall_index];
       finder.find(mesh, walls.bodies[mesh.body].pose, nl.mesh_triangle.data() + g, g_end - g,
                   particles.position_m[i], ri, touches);
       for (const MeshTouch& touch : touches) link_wall(touch.distance_m, mesh.material, mesh.body);
-      g = g_end;
-    }
+    });
   }
   return net;
 }

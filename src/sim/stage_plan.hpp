@@ -10,6 +10,7 @@
 
 #include "core/particle_store.hpp"
 #include "sim/insertion.hpp"
+#include "sim/snapshot_schedule.hpp"
 
 namespace regodem {
 
@@ -52,6 +53,8 @@ struct StagePlan {
   std::vector<Stage> stages;
   std::vector<Insertion> insertions;
   double sample_interval_s = 0.0;   // 0: 100 samples per time-limited stage
+  SnapshotSchedule snapshots;       // ParaView snapshots; none by default
+  std::vector<std::string> region_names;  // insertion region tags, index = RegionTag
   std::uint64_t seed = 1;
 };
 

@@ -181,6 +181,11 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
   Rng rng(plan.seed);
   observer.columns(time_series_columns(sim));
   const double dt = sim.time_step_s();
+  SnapshotClock snapshots(plan.snapshots);
+  auto take_snapshot = [&](double half_step_s) {
+    observer.snapshot(sim);
+    snapshots.taken(sim.time_s(), half_step_s);
+  };
 
   auto finish = [&](bool completed, const std::string& message) {
     outcome.completed = completed;
@@ -274,6 +279,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           sample();
           if (!frozen) check_coupled_heat_step(sim);  // the contacts have changed since the last check
         }
+        if (snapshots.due(sim.time_s(), 0.5 * step_s)) take_snapshot(0.5 * step_s);
 
         if (ends_by_time && done >= planned_steps) break;
         if (stage.ends_at_depth() && reached_depth(sim, stage)) break;
@@ -334,6 +340,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         } else
           sim.step();
         ++done;
+        snapshots.count_step();
         particle_steps += static_cast<double>(sim.particles.size());
       }
     } catch (const SimulationError& e) {
@@ -347,6 +354,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           observer.notice(fmt::format("insertion '{}' placed {} of {} particles during stage '{}'", ins->name,
                                       ins->inserted, ins->target_count, stage.name));
     }
+    // The state a stage ends in, also a failed or interrupted one (it shows what went wrong).
+    if (snapshots.due_at_stage_end(sim.time_s())) take_snapshot(0.0);
     sim.materials = original_pairs;
     sim.refresh_contact_parameters();
     info.end_time_s = sim.time_s();

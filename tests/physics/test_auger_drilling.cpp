@@ -77,7 +77,9 @@ TEST(AugerDrilling, TurningAugerKeepsParticlesOutOfItsSolid) {
   const std::uint64_t steps = static_cast<std::uint64_t>(0.13 / dt);
   for (std::uint64_t s = 0; s < steps; ++s) {
     sim.step();
-    if (s % 250 == 0) ASSERT_EQ(centres_inside_drill(), 0) << "at t = " << sim.time_s();
+    if (s % 250 == 0) {
+      ASSERT_EQ(centres_inside_drill(), 0) << "at t = " << sim.time_s();
+    }
     const WallBody& body = sim.walls.bodies[drill_body];
     largest_thrust = std::max(largest_thrust, body.force_N.z);            // the bed pushes up
     largest_torque = std::max(largest_torque, -body.torque_N_m.z);        // and resists the turn

@@ -7,6 +7,7 @@
 
 #include "geometry/rigid_pose.hpp"
 #include "geometry/wall_set.hpp"
+#include "geometry/wall_tessellation.hpp"
 
 namespace regodem {
 namespace {
@@ -76,6 +77,27 @@ TEST(WallSetMotion, TurningMeshCountsItsSweptArc) {
   EXPECT_NEAR(walls.max_displacement_since_build_m(), 2 * 0.01 * 0.02, 1e-15);
   walls.mark_neighbor_build();
   EXPECT_EQ(walls.max_displacement_since_build_m(), 0.0);
+}
+
+// A mesh wall's triangles are drawn at its current pose: after a quarter turn about z,
+// the vertex (0.02, 0, 0) is at (0, 0.02, 0) (1e-15 m), tagged with its body.
+TEST(WallTessellation, MeshWallIsDrawnAtItsPose) {
+  WallSet walls;
+  WallMotion spin;
+  spin.angular_velocity_rad_per_s = {0.0, 0.0, std::numbers::pi / 2.0};
+  walls.add_body("floor", {});
+  const std::uint32_t body = walls.add_body("paddle", spin);
+  TriangleMeshBuilder builder;
+  builder.add_triangle({0.0, 0.0, 0.0}, {0.02, 0.0, 0.0}, {0.0, 0.01, 0.0});
+  walls.add_mesh(body, std::move(builder).finish("paddle"), 0);
+  walls.advance(0.0, 1.0);
+  const WallSurface surface = tessellate_walls(walls, {-1, -1, -1}, {1, 1, 1});
+  ASSERT_EQ(surface.triangles.size(), 1u);
+  EXPECT_EQ(surface.body[0], body);
+  EXPECT_EQ(surface.primitive[0], kNoPrimitive);
+  const Vec3 corner = surface.points_m[surface.triangles[0][1]];
+  EXPECT_NEAR(corner.x, 0.0, 1e-15);
+  EXPECT_NEAR(corner.y, 0.02, 1e-15);
 }
 
 }  // namespace

@@ -1,0 +1,105 @@
+#include "sim/snapshot_capture.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace regodem {
+
+std::vector<std::uint32_t> contacts_per_particle(const Simulation& sim) {
+  const ParticleStore& p = sim.particles;
+  const NeighborList& list = sim.neighbor_list();
+  std::vector<std::uint32_t> count(p.size(), 0);
+  // The lists index particles as ordered at the last build; particles appended since
+  // come after all of those and are in no list yet.
+  const std::size_t owners = list.offset.empty() ? 0 : std::min(list.offset.size() - 1, p.size());
+  for (std::size_t i = 0; i < owners; ++i)
+    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
+      const std::uint32_t j = list.partner[k];
+      if (j >= p.size()) continue;
+      const double reach = p.radius_m[i] + p.radius_m[j];
+      if (norm2(p.position_m[i] - p.position_m[j]) < reach * reach) {
+        ++count[i];
+        ++count[j];
+      }
+    }
+  const std::size_t wall_owners = list.wall_offset.empty() ? 0 : std::min(list.wall_offset.size() - 1, p.size());
+  for (std::size_t i = 0; i < wall_owners; ++i)
+    for (std::uint32_t k = list.wall_offset[i]; k < list.wall_offset[i + 1]; ++k) {
+      const std::uint32_t w = list.wall_primitive[k];
+      if (w >= sim.walls.primitives.size()) continue;
+      const WallProximity near = closest_wall_point(sim.walls.primitives[w], p.position_m[i]);
+      if (near.candidate && near.distance_m < p.radius_m[i]) ++count[i];
+    }
+  MeshTouchFinder finder;
+  std::vector<MeshTouch> touches;
+  const std::size_t mesh_owners = list.mesh_offset.empty() ? 0 : std::min(list.mesh_offset.size() - 1, p.size());
+  for (std::size_t i = 0; i < mesh_owners; ++i)
+    for_each_mesh_run(list, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
+      const MeshWall& mesh = sim.walls.meshes[wall_index];
+      finder.find(mesh, sim.walls.bodies[mesh.body].pose, list.mesh_triangle.data() + g, g_end - g, p.position_m[i],
+                  p.radius_m[i], touches);
+      count[i] += static_cast<std::uint32_t>(touches.size());
+    });
+  return count;
+}
+
+SimulationSnapshotWriter::SimulationSnapshotWriter(std::filesystem::path directory, VtpOptions options,
+                                                   bool write_walls, std::vector<std::string> region_names)
+    : series_(std::move(directory), options, write_walls), region_names_(std::move(region_names)) {}
+
+ParticleSnapshot SimulationSnapshotWriter::particle_snapshot(const Simulation& sim) {
+  const ParticleStore& p = sim.particles;
+  contacts_ = contacts_per_particle(sim);
+  ParticleSnapshot s;
+  s.time_s = sim.time_s();
+  s.step = sim.step_count();
+  s.id = p.id;
+  s.position_m = p.position_m;
+  s.radius_m = p.radius_m;
+  s.velocity_m_per_s = p.velocity_m_per_s;
+  s.angular_velocity_rad_per_s = p.angular_velocity_rad_per_s;
+  s.material = p.material;
+  s.region = p.region;
+  s.contacts = contacts_;
+  if (sim.heat_enabled()) s.temperature_K = p.temperature_K;
+  // Bonds: once the simulation keeps a per-particle count of intact bonds, set
+  // s.intact_bonds to it here; the writer adds the field whenever it is given.
+  for (std::size_t m = 0; m < sim.materials.size(); ++m)
+    s.material_names.push_back(sim.materials[static_cast<MaterialIndex>(m)].name);
+  s.region_names = region_names_;
+  return s;
+}
+
+WallSnapshot SimulationSnapshotWriter::wall_snapshot(const Simulation& sim) {
+  const Domain& domain = sim.settings().domain;
+  surface_ = tessellate_walls(sim.walls, domain.min_m, domain.max_m);
+  WallSnapshot s;
+  s.time_s = sim.time_s();
+  s.step = sim.step_count();
+  s.surface = &surface_;
+  for (const WallBody& body : sim.walls.bodies) {
+    s.body_names.push_back(body.name);
+    s.body_force_N.push_back(body.force_N);
+  }
+  if (sim.heat_enabled()) {
+    for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b) {
+      const ThermalWall* w = b < sim.wall_thermal.size() ? &sim.wall_thermal[b] : nullptr;
+      const bool adiabatic = w == nullptr || w->mode == WallThermalMode::adiabatic;
+      s.body_temperature_K.push_back(adiabatic ? std::numeric_limits<double>::quiet_NaN() : w->temperature_K);
+      s.body_thermal_mode.push_back(w == nullptr ? 0 : static_cast<std::uint8_t>(w->mode));
+    }
+  }
+  return s;
+}
+
+void SimulationSnapshotWriter::write(const Simulation& sim) {
+  const ParticleSnapshot particles = particle_snapshot(sim);
+  if (sim.walls.bodies.empty()) {
+    series_.write(particles, nullptr);
+    return;
+  }
+  const WallSnapshot walls = wall_snapshot(sim);
+  series_.write(particles, &walls);
+}
+
+}  // namespace regodem

@@ -127,6 +127,17 @@ const char* shape_name(WallShape shape) {
   return "wall";
 }
 
+/// The body whose depth a stage end or a snapshot schedule follows: it must exist and feed.
+int fed_wall_index(const WallSet& walls, const std::string& name, const SourceLocation& where,
+                   const std::string& who) {
+  const auto named = std::find_if(walls.bodies.begin(), walls.bodies.end(),
+                                  [&](const WallBody& b) { return b.name == name; });
+  if (named == walls.bodies.end()) fail(where, fmt::format("{}: no wall named '{}' to measure the depth of", who, name));
+  if (norm(named->motion.velocity_m_per_s) == 0.0)
+    fail(where, fmt::format("{}: wall '{}' has no feed (motion velocity), so its depth never changes", who, name));
+  return static_cast<int>(named - walls.bodies.begin());
+}
+
 bool parallel(const Vec3& a, const Vec3& b) { return norm(cross(normalized(a), normalized(b))) < 1e-9; }
 
 WallMotion wall_motion(const WallSpec& w) {
@@ -536,15 +547,8 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     stage.min_duration_s = st.min_duration_s;
     stage.max_duration_s = st.max_duration_s;
     if (st.end == StageEnd::depth) {
-      const auto& bodies = impl.simulation->walls.bodies;
-      const auto named = std::find_if(bodies.begin(), bodies.end(),
-                                      [&](const WallBody& b) { return b.name == st.depth_wall; });
-      if (named == bodies.end())
-        fail(st.where, fmt::format("stage '{}': no wall named '{}' to measure the depth of", st.name, st.depth_wall));
-      if (norm(named->motion.velocity_m_per_s) == 0.0)
-        fail(st.where, fmt::format("stage '{}': wall '{}' has no feed (motion velocity), so its depth never changes",
-                                   st.name, st.depth_wall));
-      stage.depth_body = static_cast<int>(named - bodies.begin());
+      stage.depth_body = fed_wall_index(impl.simulation->walls, st.depth_wall, st.where,
+                                        fmt::format("stage '{}'", st.name));
       stage.depth_m = st.depth_m;
     }
     for (const OverrideSpec& o : st.overrides) {
@@ -584,11 +588,20 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   impl.plan.region_names = tags;
   if (const SnapshotSpec& snap = spec.output.snapshots; snap.enabled) {
     SnapshotSchedule& schedule = impl.plan.snapshots;
-    schedule.trigger = snap.every_steps > 0 ? SnapshotSchedule::Trigger::steps : SnapshotSchedule::Trigger::time;
+    schedule.trigger = !snap.depth_wall.empty() ? SnapshotSchedule::Trigger::depth
+                       : snap.every_steps > 0    ? SnapshotSchedule::Trigger::steps
+                                                 : SnapshotSchedule::Trigger::time;
     schedule.interval_s = snap.interval_s;
     schedule.every_steps = snap.every_steps;
     schedule.at_stage_end = snap.at_stage_end;
-    lines.push_back(snap.every_steps > 0
+    if (!snap.depth_wall.empty()) {
+      schedule.depth_body = fed_wall_index(impl.simulation->walls, snap.depth_wall, snap.where, "output.snapshots");
+      schedule.depth_interval_m = snap.depth_interval_m;
+    }
+    lines.push_back(!snap.depth_wall.empty()
+                        ? fmt::format("snapshots (ParaView) every {:.4g} m of wall '{}''s depth{}", snap.depth_interval_m,
+                                      snap.depth_wall, snap.at_stage_end ? " and at the end of each stage" : "")
+                    : snap.every_steps > 0
                         ? fmt::format("snapshots (ParaView) every {} steps{}", snap.every_steps,
                                       snap.at_stage_end ? " and at the end of each stage" : "")
                         : fmt::format("snapshots (ParaView) every {:.4g} s of simulated time{}", snap.interval_s,

@@ -249,6 +249,8 @@ struct SnapshotSpec {
   bool enabled = false;           // the block is present and valid
   double interval_s = 0.0;        // > 0: every interval of simulated time
   std::uint64_t every_steps = 0;  // > 0: every so many steps
+  std::string depth_wall;         // non-empty: every depth_interval_m of that wall's depth
+  double depth_interval_m = 0.0;
   bool at_stage_end = true;       // one more at the end of each stage
   bool walls = true;              // the walls series too
   bool compress = true;           // zlib inside the .vtp

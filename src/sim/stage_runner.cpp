@@ -182,9 +182,13 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
   observer.columns(time_series_columns(sim));
   const double dt = sim.time_step_s();
   SnapshotClock snapshots(plan.snapshots);
+  const auto snapshot_depth_m = [&] {
+    const int body = plan.snapshots.depth_body;
+    return body >= 0 ? sim.walls.bodies[static_cast<std::size_t>(body)].depth_m() : 0.0;
+  };
   auto take_snapshot = [&](double half_step_s) {
     observer.snapshot(sim);
-    snapshots.taken(sim.time_s(), half_step_s);
+    snapshots.taken(sim.time_s(), half_step_s, snapshot_depth_m());
   };
 
   auto finish = [&](bool completed, const std::string& message) {
@@ -279,7 +283,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           sample();
           if (!frozen) check_coupled_heat_step(sim);  // the contacts have changed since the last check
         }
-        if (snapshots.due(sim.time_s(), 0.5 * step_s)) take_snapshot(0.5 * step_s);
+        if (snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m())) take_snapshot(0.5 * step_s);
 
         if (ends_by_time && done >= planned_steps) break;
         if (stage.ends_at_depth() && reached_depth(sim, stage)) break;

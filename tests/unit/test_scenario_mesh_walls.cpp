@@ -157,6 +157,25 @@ TEST_F(MeshScenario, StageEndsAtTheDrillDepth) {
     EXPECT_NE(std::find(observer.names.begin(), observer.names.end(), column), observer.names.end()) << column;
 }
 
+// Snapshots every 1 mm of the drill's depth: at the start (-1 mm), then at 0, 1 and 2
+// mm, each on the first step at or past its depth (the feed moves 1 micrometre a step),
+// and none doubled at the stage's end.
+TEST_F(MeshScenario, SnapshotsEveryMillimetreOfDepth) {
+  ScenarioSpec spec = read("stages:", "output:\n  snapshots: {every_depth: {wall: plate, depth: 1 mm}}\nstages:");
+  PreparedRun run = PreparedRun::build(spec, 1);
+  struct Depths : RunObserver {
+    std::vector<double> depth_m;
+    void snapshot(const Simulation& sim) override { depth_m.push_back(sim.walls.bodies[0].depth_m()); }
+  } observer;
+  const std::atomic<bool> stop{false};
+  ASSERT_TRUE(run.run(observer, stop).completed);
+  ASSERT_EQ(observer.depth_m.size(), 4u);
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(observer.depth_m[static_cast<std::size_t>(k)], -1e-3 + 1e-3 * k, 1e-6 + 1e-12) << k;
+  EXPECT_NE(error_of("stages:", "output:\n  snapshots: {every_depth: {wall: lid, depth: 1 mm}}\nstages:")
+                .find("no wall named 'lid'"),
+            std::string::npos);
+}
+
 // A depth the wall stops short of fails the stage with a message that says why.
 TEST_F(MeshScenario, DepthBeyondTheStopFailsClearly) {
   PreparedRun run = PreparedRun::build(read("until: {wall: plate, depth: 2 mm}", "until: {wall: plate, depth: 5 mm}"), 1);

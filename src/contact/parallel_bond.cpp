@@ -1,0 +1,124 @@
+#include "contact/parallel_bond.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace regodem {
+
+BondSection BondSection::of_radius(double radius_m) {
+  BondSection s;
+  s.radius_m = radius_m;
+  const double r2 = radius_m * radius_m;
+  s.area_m2 = std::numbers::pi * r2;
+  s.inertia_m4 = 0.25 * std::numbers::pi * r2 * r2;
+  s.polar_inertia_m4 = 2.0 * s.inertia_m4;
+  return s;
+}
+
+BondStresses bond_stresses(const BondLoads& loads, const BondSection& section) {
+  // Potyondy & Cundall (2004) Eq. 12: the bond is a beam of circular section.
+  BondStresses s;
+  s.tensile_Pa = loads.normal_force_N / section.area_m2 + norm(loads.bend_moment_N_m) * section.radius_m / section.inertia_m4;
+  s.shear_Pa = norm(loads.shear_force_N) / section.area_m2 +
+               std::abs(loads.twist_moment_N_m) * section.radius_m / section.polar_inertia_m4;
+  return s;
+}
+
+BondBreak bond_failure(const BondStresses& stresses, const BondParameters& p) {
+  const double tension = stresses.tensile_Pa / p.tensile_strength_Pa;
+  const double shear = stresses.shear_Pa / p.shear_strength_Pa;
+  if (!(tension > 1.0) && !(shear > 1.0)) return BondBreak::none;
+  return tension >= shear ? BondBreak::tension : BondBreak::shear;
+}
+
+Vec3 rotate_by(const Vec3& v, const Vec3& phi) {
+  const double angle2 = norm2(phi);
+  if (angle2 == 0.0) return v;
+  const double angle = std::sqrt(angle2);
+  const Vec3 axis = phi * (1.0 / angle);
+  const double c = std::cos(angle), s = std::sin(angle);
+  // Rodrigues: v cos a + (k x v) sin a + k (k.v)(1 - cos a); exactly orthogonal.
+  return v * c + cross(axis, v) * s + axis * (dot(axis, v) * (1.0 - c));
+}
+
+Vec3 rotate_between(const Vec3& v, const Vec3& a, const Vec3& b) {
+  // Rotation about a x b by the angle between a and b, written without trigonometry:
+  // v' = v c + (k x v) + k (k.v) / (1 + c) with k = a x b (|k| = sin), c = a.b.
+  const Vec3 k = cross(a, b);
+  const double c = dot(a, b);
+  if (c <= -1.0 + 1e-12) return -v;  // a half turn: the bond flipped, no meaningful frame
+  return v * c + cross(k, v) + k * (dot(k, v) / (1.0 + c));
+}
+
+BondAction update_bond(const BondParameters& p, const BondSection& section, double rest_length_m,
+                       const BondKinematics& k, double dt_s, double effective_mass_kg,
+                       double effective_inertia_kg_m2, Vec3& normal, BondLoads& loads) {
+  const Vec3 d = k.position_j_m - k.position_i_m;
+  const double length = norm(d);
+  const Vec3 n = d * (1.0 / length);
+
+  // 1. Turn the stored loads with the pair: first with the mean spin of the two
+  // particles over the step (exact for a rigid rotation of the pair, whatever its axis),
+  // then by the smallest rotation that takes the spun old normal onto the new one (the
+  // part of the normal's change that relative translation made).
+  const Vec3 spin = (k.angular_velocity_i_rad_per_s + k.angular_velocity_j_rad_per_s) * (0.5 * dt_s);
+  const Vec3 spun_normal = rotate_by(normal, spin);
+  Vec3 shear = rotate_between(rotate_by(loads.shear_force_N, spin), spun_normal, n);
+  Vec3 bend = rotate_between(rotate_by(loads.bend_moment_N_m, spin), spun_normal, n);
+  // Round-off leaves a tiny normal component; the in-plane loads stay in the plane.
+  shear -= n * dot(shear, n);
+  bend -= n * dot(bend, n);
+  normal = n;
+
+  // 2. Relative motion of j with respect to i at the bond, whose centre lies on the
+  // line of centres at arm_i from i (midway into the gap or overlap, as for contacts).
+  // The velocities are those that moved the centres over the step, so the lever arms
+  // are taken at mid-step, d_mid = d - (v_j - v_i) dt/2: for a rigid rotation by theta
+  // per step the contact points then slip by theta^3/12 of the arm instead of
+  // theta^2/2 (the Cayley form of a rotation), so a spinning pair loads no spring.
+  const double arm_i = 0.5 * (length + k.radius_i_m - k.radius_j_m);
+  const double arm_j = length - arm_i;
+  const Vec3 wi = k.angular_velocity_i_rad_per_s, wj = k.angular_velocity_j_rad_per_s;
+  const Vec3 centre_velocity = k.velocity_j_m_per_s - k.velocity_i_m_per_s;
+  const Vec3 d_mid = d - centre_velocity * (0.5 * dt_s);
+  const Vec3 n_mid = normalized(d_mid);
+  const Vec3 relative_velocity = centre_velocity - cross(wj, d_mid * (arm_j / length)) - cross(wi, d_mid * (arm_i / length));
+  const double normal_speed = dot(relative_velocity, n_mid);
+  Vec3 shear_velocity = relative_velocity - n_mid * normal_speed;
+  shear_velocity -= n * dot(shear_velocity, n);  // into the new bond plane
+  const Vec3 relative_spin = wj - wi;
+  const double twist_rate = dot(relative_spin, n_mid);
+  Vec3 bend_rate = relative_spin - n_mid * twist_rate;
+  bend_rate -= n * dot(bend_rate, n);
+
+  // 3. Increments (Potyondy & Cundall 2004 Eq. 10, 11; DESIGN.md section 2), and the
+  // normal force from the total stretch.
+  const double kn_area = p.normal_stiffness_Pa_per_m * section.area_m2;
+  const double ks_area = p.shear_stiffness_Pa_per_m * section.area_m2;
+  const double kt = p.shear_stiffness_Pa_per_m * section.polar_inertia_m4;
+  const double kb = p.normal_stiffness_Pa_per_m * section.inertia_m4;
+  loads.normal_force_N = kn_area * (length - rest_length_m);
+  loads.shear_force_N = shear + shear_velocity * (ks_area * dt_s);
+  loads.twist_moment_N_m += kt * twist_rate * dt_s;
+  loads.bend_moment_N_m = bend + bend_rate * (kb * dt_s);
+
+  // 4. Forces, with the optional viscous damping of each component.
+  double normal_force = loads.normal_force_N, twist = loads.twist_moment_N_m;
+  Vec3 shear_force = loads.shear_force_N, bend_moment = loads.bend_moment_N_m;
+  if (p.damping_ratio > 0.0) {
+    const double c = 2.0 * p.damping_ratio;
+    normal_force += c * std::sqrt(kn_area * effective_mass_kg) * normal_speed;
+    shear_force += shear_velocity * (c * std::sqrt(ks_area * effective_mass_kg));
+    twist += c * std::sqrt(kt * effective_inertia_kg_m2) * twist_rate;
+    bend_moment += bend_rate * (c * std::sqrt(kb * effective_inertia_kg_m2));
+  }
+  BondAction out;
+  out.force_on_i_N = n * normal_force + shear_force;
+  const Vec3 lever = cross(n, shear_force);
+  out.torque_on_i_N_m = n * twist + bend_moment + lever * arm_i;
+  out.torque_on_j_N_m = -(n * twist + bend_moment) + lever * arm_j;
+  return out;
+}
+
+}  // namespace regodem

@@ -40,6 +40,7 @@ constexpr const char* time_series_file = "time_series.csv";
 constexpr const char* summary_file = "summary.json";
 constexpr const char* scenario_copy_file = "scenario.yaml";
 constexpr const char* overrides_file = "overrides.txt";
+constexpr const char* bond_breaks_file = "bond_breaks.csv";  // only when a bond broke
 
 std::string utc_timestamp(std::chrono::system_clock::time_point when) {
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(when)));
@@ -132,6 +133,11 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   summary.overrides = options.overrides;
   const HeatSettings& heat = prepared.simulation().settings().heat;
   summary.heat = {heat.enabled, heat.time_scale_factor, heat.friction_heating, heat.friction_partition};
+  const Simulation& sim = prepared.simulation();
+  if (sim.bonds_configured()) {
+    const BondCounts bonds = sim.bond_counts();  // the simulation's, whether the run ended or threw
+    summary.bonds = BondSummary{bonds.formed, bonds.intact, bonds.broken_in_tension, bonds.broken_in_shear};
+  }
   const StageResult unfinished =
       ending.status == RunStatus::interrupted ? StageResult::interrupted : StageResult::failed;
   summary.stages = recorder.stage_summaries(outcome.simulated_time_s, unfinished);
@@ -183,7 +189,7 @@ int run_scenario(const RunOptions& options) {
     check_output_directory(directory, options.overwrite);
     prepared.emplace(PreparedRun::build(*spec, threads));
     prepare_output_directory(directory, options.overwrite,
-                             {time_series_file, summary_file, scenario_copy_file, overrides_file});
+                             {time_series_file, summary_file, scenario_copy_file, overrides_file, bond_breaks_file});
   } catch (const InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
@@ -194,6 +200,7 @@ int run_scenario(const RunOptions& options) {
   std::vector<std::string> stage_names;
   for (const StageSpec& stage : spec->stages) stage_names.push_back(stage.name);
   RunRecorder recorder(directory / time_series_file, display, stage_names);
+  recorder.set_bond_breaks_path(directory / bond_breaks_file);
 
   const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   const auto wall_start = std::chrono::steady_clock::now();

@@ -28,6 +28,9 @@ class RunRecorder final : public RunObserver {
   void sample(const std::vector<double>& row) override;
   void notice(const std::string& message) override;
   void stage_finished(const StageInfo& stage, StageResult result, const std::string& message) override;
+  /// Appends the events to the breakage CSV, created at the first broken bond.
+  void bonds_broken(const std::vector<BondBreakEvent>& events) override;
+  void set_bond_breaks_path(std::filesystem::path path) { bond_breaks_path_ = std::move(path); }
 
   /// Stage records. The last stage started ends at `final_time_s` (the run's simulated
   /// time when it returned) and, if it never reported its end (the run threw), gets
@@ -46,6 +49,8 @@ class RunRecorder final : public RunObserver {
   std::filesystem::path time_series_path_;
   ProgressDisplay& display_;
   std::unique_ptr<CsvTimeSeriesWriter> time_series_;
+  std::filesystem::path bond_breaks_path_;
+  std::unique_ptr<CsvTimeSeriesWriter> bond_breaks_;
   std::vector<StageSummary> stages_;
   std::optional<StageInfo> current_stage_;
   std::optional<ProgressSnapshot> last_snapshot_;

@@ -6,6 +6,29 @@
 
 namespace regodem {
 
+BondParameters zhao2023_bond_parameters() {
+  BondParameters p;
+  p.normal_stiffness_Pa_per_m = 3e10;
+  p.shear_stiffness_Pa_per_m = 1.5e9;
+  p.tensile_strength_Pa = 1.2e11;
+  p.shear_strength_Pa = 6e10;
+  p.radius_multiplier = 1.0;
+  return p;
+}
+
+BondParameters icy_regolith_bond_parameters() {
+  BondParameters p;
+  // Stiff enough that the bond is no softer than the Hertz contacts of 0.6 mm grains
+  // (a bond modulus k_n 2R ~ 0.6 GPa), soft enough that six bonds per grain stay stable
+  // at 0.2 of the Rayleigh step (omega dt ~ 0.5); k_n/k_s = 2.5 as is usual for PFC.
+  p.normal_stiffness_Pa_per_m = 1e12;
+  p.shear_stiffness_Pa_per_m = 4e11;
+  p.tensile_strength_Pa = 30e6;
+  p.shear_strength_Pa = 30e6;
+  p.radius_multiplier = 1.0;
+  return p;
+}
+
 BondSection BondSection::of_radius(double radius_m) {
   BondSection s;
   s.radius_m = radius_m;

@@ -40,6 +40,15 @@ struct BondParameters {
   bool conducts_heat = false;
 };
 
+/// The paper's Table 2 (Zhao et al. 2023): k_n = 3e10 N/m^3, k_s = 1.5e9 N/m^3,
+/// sigma_c = 1.2e11 Pa, tau_c = 6e10 Pa, lambda_b = 1. Practically unbreakable: a
+/// 0.6 mm bond holds ~34 kN and stretches ~4 m first (DESIGN.md section 2).
+BondParameters zhao2023_bond_parameters();
+/// The default set, icy regolith at cryogenic temperature (docs/physics.md, "Parallel
+/// bonds", explains the choice and its sources): k_n = 1e12 N/m^3, k_s = 4e11 N/m^3,
+/// sigma_c = tau_c = 30 MPa, lambda_b = 1.
+BondParameters icy_regolith_bond_parameters();
+
 /// Geometric constants of a bond of radius R_b: A = pi R_b^2, I = pi R_b^4/4, J = 2I.
 struct BondSection {
   double radius_m = 0.0;

@@ -36,6 +36,11 @@ void check_heat_requirements(const ScenarioSpec& spec, const ScenarioReferences&
                              ScenarioDiagnostics& diagnostics);                     // read_heat.cpp
 void read_walls(const YamlSection& root, const ScenarioReferences& references,
                 ScenarioSpec& spec);                                                // read_walls.cpp
+/// The `bonds` list (bond kinds per material pair) and a stage's `form_bonds`.
+void read_bonds(const YamlSection& root, const ScenarioReferences& references,
+                ScenarioSpec& spec);                                                // read_bonds.cpp
+std::optional<BondFormationSpec> read_bond_formation(const YamlValue& value,
+                                                     const ScenarioReferences& references);  // read_bonds.cpp
 void read_insertions(const YamlSection& root, const ScenarioReferences& references,
                      ScenarioSpec& spec);                                           // read_insertions.cpp
 

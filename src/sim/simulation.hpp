@@ -122,6 +122,7 @@ class Simulation {
   BondCounts bond_counts() const;
   /// The bonds broken since the last call, in the order they broke.
   std::vector<BondBreakEvent> take_bond_breaks();
+  bool bond_breaks_pending() const { return !bond_breaks_.empty(); }
 
   ParticleStore particles;
   MaterialTable materials;

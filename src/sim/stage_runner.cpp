@@ -89,6 +89,7 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".force_" + axis, "N"});
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".torque_" + axis, "N m"});
   }
+  if (sim.bonds_configured()) columns.insert(columns.end(), {{"bonds_intact", "-"}, {"bonds_broken", "-"}});
   if (!sim.heat_enabled()) return columns;
   columns.insert(columns.end(), {{"temperature_mean", "K"},
                                  {"temperature_min", "K"},
@@ -126,6 +127,10 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
   for (const WallBody& wall : sim.walls.bodies) {
     row.insert(row.end(), {wall.force_N.x, wall.force_N.y, wall.force_N.z});
     row.insert(row.end(), {wall.torque_N_m.x, wall.torque_N_m.y, wall.torque_N_m.z});
+  }
+  if (sim.bonds_configured()) {
+    const BondCounts bonds = sim.bond_counts();
+    row.insert(row.end(), {static_cast<double>(bonds.intact), static_cast<double>(bonds.broken())});
   }
   if (!sim.heat_enabled()) return row;
   double sum = 0.0, lowest = std::numeric_limits<double>::quiet_NaN(), highest = lowest;
@@ -165,6 +170,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     outcome.simulated_time_s = sim.time_s();
     outcome.wall_s = seconds_since(run_start);
     outcome.particle_steps_per_s = outcome.wall_s > 0.0 ? particle_steps / outcome.wall_s : 0.0;
+    outcome.bonds_configured = sim.bonds_configured();
+    outcome.bonds = sim.bond_counts();
     return outcome;
   };
 
@@ -191,6 +198,12 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     std::string failure;
     StageResult result = StageResult::finished;
     try {
+      if (stage.form_bonds) {
+        const BondFormation& f = *stage.form_bonds;
+        const std::size_t formed = sim.form_bonds(f.gap_fraction, f.materials, f.regions);
+        observer.notice(fmt::format("stage '{}': formed {} bonds ({} intact in all)", stage.name, formed,
+                                    sim.bond_counts().intact));
+      }
       if (stage.freezes_mechanics())
         frozen.emplace(sim, stage);
       else
@@ -287,8 +300,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           const double remaining_s = stage_end_s - sim.time_s();
           if (remaining_s <= 0.0) break;
           frozen->advance(std::min(step_s, remaining_s));
-        } else
+        } else {
           sim.step();
+          if (sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
+        }
         ++done;
         particle_steps += static_cast<double>(sim.particles.size());
       }

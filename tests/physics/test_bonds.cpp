@@ -10,6 +10,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/rng.hpp"
 #include "physics_fixtures.hpp"
 
 namespace regodem::testing {
@@ -244,6 +245,65 @@ TEST(BondedChain, CantileverDeflectsAsAChainOfElasticJoints) {
   std::printf("cantilever: N=4 sim %.6g exact %.6g EB %.6g; N=8 sim %.6g exact %.6g EB %.6g\n",
               short_chain.simulated, short_chain.exact, short_chain.euler_bernoulli, long_chain.simulated,
               long_chain.exact, long_chain.euler_bernoulli);
+}
+
+}  // namespace
+}  // namespace regodem::testing
+
+namespace regodem::testing {
+namespace {
+
+/// A 6 x 6 x 6 block of touching spheres, bonded, flung apart by random velocities
+/// strong enough to break some bonds: the run on two threads (forced: one particle per
+/// thread suffices) is repeated and must be bit for bit the same, breaks included.
+struct BlockState {
+  std::vector<Vec3> position;
+  std::uint64_t intact = 0, broken = 0;
+  std::size_t events = 0;
+};
+
+BlockState bonded_block_run() {
+  SphereMaterial m;
+  m.sliding_friction = 0.5;
+  const double dt = 0.05 * rayleigh_time_for(m, kRadius);  // six stiff bonds on the inner spheres
+  SimulationSettings settings = settings_for(kRadius, dt, {0, 0, -9.81}, 0.05, 2);
+  settings.min_particles_per_thread = 1;
+  Simulation sim(one_material(m), WallSet{}, settings);
+  Rng rng(5);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k) {
+        const Vec3 v{rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)};
+        sim.add_particle(sphere({2 * kRadius * i, 2 * kRadius * j, 2 * kRadius * k}, v, kRadius, m.density));
+      }
+  BondParameters p = test_bond();
+  p.tensile_strength_Pa = p.shear_strength_Pa = 2e5;
+  sim.configure_bonds({p}, {0});
+  EXPECT_EQ(sim.form_bonds(0.01), 3u * 6 * 6 * 5);
+  std::size_t events = 0;
+  for (int s = 0; s < 600; ++s) {
+    sim.step();
+    events += sim.take_bond_breaks().size();
+  }
+  BlockState out;
+  for (ParticleId id = 0; id < sim.particles.size(); ++id)
+    out.position.push_back(sim.particles.position_m[index_of(sim, id)]);
+  out.intact = sim.bond_counts().intact;
+  out.broken = sim.bond_counts().broken();
+  out.events = events;
+  return out;
+}
+
+TEST(BondedBlock, TwoThreadRunsAreIdenticalAndCountEveryBreak) {
+  const BlockState a = bonded_block_run(), b = bonded_block_run();
+  EXPECT_GT(a.broken, 0u);
+  EXPECT_GT(a.intact, 0u);
+  EXPECT_EQ(a.intact + a.broken, 3u * 6 * 6 * 5);  // every bond intact or broken, none lost
+  EXPECT_EQ(a.events, a.broken);
+  EXPECT_EQ(a.intact, b.intact);
+  EXPECT_EQ(a.broken, b.broken);
+  ASSERT_EQ(a.position.size(), b.position.size());
+  for (std::size_t i = 0; i < a.position.size(); ++i) EXPECT_EQ(a.position[i], b.position[i]) << "particle " << i;
 }
 
 }  // namespace

@@ -36,19 +36,24 @@ BondSection BondSection::of_radius(double radius_m) {
   s.area_m2 = std::numbers::pi * r2;
   s.inertia_m4 = 0.25 * std::numbers::pi * r2 * r2;
   s.polar_inertia_m4 = 2.0 * s.inertia_m4;
+  s.inv_area_per_m2 = 1.0 / s.area_m2;
+  s.radius_over_inertia_per_m3 = radius_m / s.inertia_m4;
+  s.radius_over_polar_inertia_per_m3 = radius_m / s.polar_inertia_m4;
   return s;
 }
 
 BondStresses bond_stresses(const BondLoads& loads, const BondSection& section) {
   // Potyondy & Cundall (2004) Eq. 12: the bond is a beam of circular section.
   BondStresses s;
-  s.tensile_Pa = loads.normal_force_N / section.area_m2 + norm(loads.bend_moment_N_m) * section.radius_m / section.inertia_m4;
-  s.shear_Pa = norm(loads.shear_force_N) / section.area_m2 +
-               std::abs(loads.twist_moment_N_m) * section.radius_m / section.polar_inertia_m4;
+  s.tensile_Pa = loads.normal_force_N * section.inv_area_per_m2 +
+                 norm(loads.bend_moment_N_m) * section.radius_over_inertia_per_m3;
+  s.shear_Pa = norm(loads.shear_force_N) * section.inv_area_per_m2 +
+               std::abs(loads.twist_moment_N_m) * section.radius_over_polar_inertia_per_m3;
   return s;
 }
 
 BondBreak bond_failure(const BondStresses& stresses, const BondParameters& p) {
+  if (stresses.tensile_Pa <= p.tensile_strength_Pa && stresses.shear_Pa <= p.shear_strength_Pa) return BondBreak::none;
   const double tension = stresses.tensile_Pa / p.tensile_strength_Pa;
   const double shear = stresses.shear_Pa / p.shear_strength_Pa;
   if (!(tension > 1.0) && !(shear > 1.0)) return BondBreak::none;
@@ -85,30 +90,41 @@ struct Rotation {
 
 Vec3 rotate_by(const Vec3& v, const Vec3& phi) { return Rotation(phi)(v); }
 
-Vec3 rotate_between(const Vec3& v, const Vec3& a, const Vec3& b) {
-  // Rotation about a x b by the angle between a and b, written without trigonometry:
-  // v' = v c + (k x v) + k (k.v) / (1 + c) with k = a x b (|k| = sin), c = a.b.
-  const Vec3 k = cross(a, b);
-  const double c = dot(a, b);
-  if (c <= -1.0 + 1e-12) return -v;  // a half turn: the bond flipped, no meaningful frame
-  return v * c + cross(k, v) + k * (dot(k, v) / (1.0 + c));
-}
+namespace {
+
+/// The smallest rotation taking unit vector a onto unit vector b, about a x b, without
+/// trigonometry: v' = v c + (k x v) + k (k.v)/(1 + c), k = a x b (|k| = sin), c = a.b.
+struct MinimalRotation {
+  Vec3 k;
+  double c = 1.0, c1 = 0.5;
+  bool flip = false;  // a half turn: the bond flipped, no meaningful frame
+
+  MinimalRotation(const Vec3& a, const Vec3& b) : k(cross(a, b)), c(dot(a, b)) {
+    flip = c <= -1.0 + 1e-12;
+    if (!flip) c1 = 1.0 / (1.0 + c);
+  }
+  Vec3 operator()(const Vec3& v) const { return flip ? -v : v * c + cross(k, v) + k * (dot(k, v) * c1); }
+};
+
+}  // namespace
+
+Vec3 rotate_between(const Vec3& v, const Vec3& a, const Vec3& b) { return MinimalRotation(a, b)(v); }
 
 BondAction update_bond(const BondParameters& p, const BondSection& section, double rest_length_m,
                        const BondKinematics& k, double dt_s, double effective_mass_kg,
                        double effective_inertia_kg_m2, Vec3& normal, BondLoads& loads) {
   const Vec3 d = k.position_j_m - k.position_i_m;
-  const double length = norm(d);
-  const Vec3 n = d * (1.0 / length);
+  const double length = norm(d), inv_length = 1.0 / length;
+  const Vec3 n = d * inv_length;
 
   // 1. Turn the stored loads with the pair: first with the mean spin of the two
   // particles over the step (exact for a rigid rotation of the pair, whatever its axis),
   // then by the smallest rotation that takes the spun old normal onto the new one (the
   // part of the normal's change that relative translation made).
   const Rotation spin((k.angular_velocity_i_rad_per_s + k.angular_velocity_j_rad_per_s) * (0.5 * dt_s));
-  const Vec3 spun_normal = spin(normal);
-  Vec3 shear = rotate_between(spin(loads.shear_force_N), spun_normal, n);
-  Vec3 bend = rotate_between(spin(loads.bend_moment_N_m), spun_normal, n);
+  const MinimalRotation align(spin(normal), n);
+  Vec3 shear = align(spin(loads.shear_force_N));
+  Vec3 bend = align(spin(loads.bend_moment_N_m));
   // Round-off leaves a tiny normal component; the in-plane loads stay in the plane.
   shear -= n * dot(shear, n);
   bend -= n * dot(bend, n);
@@ -126,7 +142,8 @@ BondAction update_bond(const BondParameters& p, const BondSection& section, doub
   const Vec3 centre_velocity = k.velocity_j_m_per_s - k.velocity_i_m_per_s;
   const Vec3 d_mid = d - centre_velocity * (0.5 * dt_s);
   const Vec3 n_mid = normalized(d_mid);
-  const Vec3 relative_velocity = centre_velocity - cross(wj, d_mid * (arm_j / length)) - cross(wi, d_mid * (arm_i / length));
+  const Vec3 relative_velocity =
+      centre_velocity - cross(wj, d_mid * (arm_j * inv_length)) - cross(wi, d_mid * (arm_i * inv_length));
   const double normal_speed = dot(relative_velocity, n_mid);
   Vec3 shear_velocity = relative_velocity - n_mid * normal_speed;
   shear_velocity -= n * dot(shear_velocity, n);  // into the new bond plane

@@ -55,6 +55,10 @@ struct BondSection {
   double area_m2 = 0.0;
   double inertia_m4 = 0.0;        // I, bending
   double polar_inertia_m4 = 0.0;  // J, twisting
+  // 1/A, R_b/I and R_b/J: the stress check runs every step, without divisions.
+  double inv_area_per_m2 = 0.0;
+  double radius_over_inertia_per_m3 = 0.0;
+  double radius_over_polar_inertia_per_m3 = 0.0;
   static BondSection of_radius(double radius_m);
 };
 

@@ -52,9 +52,12 @@ BENCHMARK(BM_BondedBed)
 /// crosses it hundreds of times before it fails, so the loading is quasi-static). The
 /// axial stress is the top plate's force over the sample's cross-section pi (5 mm)^2;
 /// its peak is the uniaxial compressive strength (UCS). preset 0: the default
-/// icy-regolith bond; 1: the paper's Table 2 (zhao2023), which no test breaks.
+/// icy-regolith bond; 1: the paper's Table 2 (zhao2023), which no test breaks;
+/// strength_MPa, where not 0, replaces both strengths of the preset. The test stops at
+/// failure (the stress down to half its peak) or at 3 % strain.
 void BM_UniaxialCompression(benchmark::State& state) {
   const bool paper = state.range(0) != 0;
+  const double strength_Pa = 1e6 * static_cast<double>(state.range(1));  // 0: the preset's
   constexpr double kSampleRadius = 5.0e-3;
   static const std::vector<ParticleRecord> bed = stiffened_bed(settled_bed(3000, kSampleRadius), 2, kSampleRadius);
   double ucs = 0.0, strain_at_peak = 0.0, steps_run = 0.0, bonds = 0.0, broken = 0.0, final_strain = 0.0;
@@ -88,7 +91,9 @@ void BM_UniaxialCompression(benchmark::State& state) {
       p.density_kg_per_m3 = kDensity;
       sim.add_particle(p);
     }
-    sim.configure_bonds({paper ? zhao2023_bond_parameters() : icy_regolith_bond_parameters()}, {0});
+    BondParameters bond = paper ? zhao2023_bond_parameters() : icy_regolith_bond_parameters();
+    if (strength_Pa > 0.0) bond.tensile_strength_Pa = bond.shear_strength_Pa = strength_Pa;
+    sim.configure_bonds({bond}, {0});
     bonds = static_cast<double>(sim.form_bonds(0.05));
     const double area = M_PI * kSampleRadius * kSampleRadius;
     ucs = 0.0;
@@ -97,7 +102,7 @@ void BM_UniaxialCompression(benchmark::State& state) {
       sim.advance(100);
       steps += 100;
       const double strain = std::max(0.0, (sim.time_s() - relax_s) * speed / top);
-      const double stress = sim.walls.bodies[1].force_N.z < 0.0 ? -sim.walls.bodies[1].force_N.z / area : 0.0;
+      const double stress = std::max(0.0, sim.walls.bodies[1].force_N.z) / area;  // the particles push the press up
       if (stress > ucs) ucs = stress, strain_at_peak = strain;
       final_strain = strain;
       // Failed: the stress has fallen to half its peak; or 3 % strain without failure.
@@ -113,7 +118,10 @@ void BM_UniaxialCompression(benchmark::State& state) {
   state.counters["broken"] = broken;
   state.counters["steps"] = steps_run;
 }
-BENCHMARK(BM_UniaxialCompression)->ArgNames({"paper_preset"})->Arg(0)->Arg(1)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_UniaxialCompression)
+    ->ArgNames({"paper_preset", "strength_MPa"})
+    ->Args({0, 0})->Args({0, 10})->Args({1, 0})
+    ->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 }  // namespace regodem::bench

@@ -43,6 +43,7 @@ constexpr const char* time_series_file = "time_series.csv";
 constexpr const char* summary_file = "summary.json";
 constexpr const char* scenario_copy_file = "scenario.yaml";
 constexpr const char* overrides_file = "overrides.txt";
+constexpr const char* bond_breaks_file = "bond_breaks.csv";  // only when a bond broke
 
 std::string utc_timestamp(std::chrono::system_clock::time_point when) {
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(when)));
@@ -149,6 +150,11 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   summary.overrides = options.overrides;
   const HeatSettings& heat = prepared.simulation().settings().heat;
   summary.heat = {heat.enabled, heat.time_scale_factor, heat.friction_heating, heat.friction_partition};
+  const Simulation& sim = prepared.simulation();
+  if (sim.bonds_configured()) {
+    const BondCounts bonds = sim.bond_counts();  // the simulation's, whether the run ended or threw
+    summary.bonds = BondSummary{bonds.formed, bonds.intact, bonds.broken_in_tension, bonds.broken_in_shear};
+  }
   const StageResult unfinished =
       ending.status == RunStatus::interrupted ? StageResult::interrupted : StageResult::failed;
   summary.stages = recorder.stage_summaries(outcome.simulated_time_s, unfinished);
@@ -205,7 +211,8 @@ int run_scenario(const RunOptions& options) {
                                      overrides_file,
                                      SnapshotSeries::particles_collection,
                                      SnapshotSeries::walls_collection,
-                                     SnapshotSeries::data_folder};
+                                     SnapshotSeries::data_folder,
+                                     bond_breaks_file};
     for (const std::string& mesh_file : generated_mesh_files(*spec)) outputs.push_back(mesh_file);
     prepare_output_directory(directory, options.overwrite, outputs);
   } catch (const InputError& error) {
@@ -224,6 +231,7 @@ int run_scenario(const RunOptions& options) {
     snapshots.emplace(directory, VtpOptions{snap.compress}, snap.walls, prepared->plan().region_names);
     recorder.write_snapshots_with(&*snapshots);
   }
+  recorder.set_bond_breaks_path(directory / bond_breaks_file);
 
   const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   const auto wall_start = std::chrono::steady_clock::now();

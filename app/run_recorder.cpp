@@ -41,6 +41,26 @@ void RunRecorder::snapshot(const Simulation& sim) {
   if (snapshots_ != nullptr) snapshots_->write(sim);
 }
 
+void RunRecorder::bonds_broken(const std::vector<BondBreakEvent>& events) {
+  if (bond_breaks_path_.empty()) return;
+  if (!bond_breaks_)
+    bond_breaks_ = std::make_unique<CsvTimeSeriesWriter>(
+        bond_breaks_path_, std::vector<SeriesColumn>{{"time", "s"},
+                                                     {"x", "m"},
+                                                     {"y", "m"},
+                                                     {"z", "m"},
+                                                     {"mode", "1 tension, 2 shear"},
+                                                     {"particle_i", "id"},
+                                                     {"particle_j", "id"},
+                                                     {"tensile_stress", "Pa"},
+                                                     {"shear_stress", "Pa"}});
+  for (const BondBreakEvent& e : events)
+    bond_breaks_->write_row(std::vector<double>{e.time_s, e.position_m.x, e.position_m.y, e.position_m.z,
+                                                static_cast<double>(e.mode), static_cast<double>(e.particle_i),
+                                                static_cast<double>(e.particle_j), e.tensile_stress_Pa,
+                                                e.shear_stress_Pa});
+}
+
 void RunRecorder::notice(const std::string& message) {
   notices_.push_back(message);
   display_.notice(message);

@@ -30,6 +30,9 @@ class RunRecorder final : public RunObserver {
   void snapshot(const Simulation& sim) override;
   void notice(const std::string& message) override;
   void stage_finished(const StageInfo& stage, StageResult result, const std::string& message) override;
+  /// Appends the events to the breakage CSV, created at the first broken bond.
+  void bonds_broken(const std::vector<BondBreakEvent>& events) override;
+  void set_bond_breaks_path(std::filesystem::path path) { bond_breaks_path_ = std::move(path); }
 
   /// Stage records. The last stage started ends at `final_time_s` (the run's simulated
   /// time when it returned) and, if it never reported its end (the run threw), gets
@@ -52,6 +55,8 @@ class RunRecorder final : public RunObserver {
   ProgressDisplay& display_;
   std::unique_ptr<CsvTimeSeriesWriter> time_series_;
   SimulationSnapshotWriter* snapshots_ = nullptr;
+  std::filesystem::path bond_breaks_path_;
+  std::unique_ptr<CsvTimeSeriesWriter> bond_breaks_;
   std::vector<StageSummary> stages_;
   std::optional<StageInfo> current_stage_;
   std::optional<ProgressSnapshot> last_snapshot_;

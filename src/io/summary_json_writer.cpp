@@ -69,6 +69,12 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
                   {"time_scale_factor", number_or_null(summary.heat.time_scale_factor)},
                   {"friction_heating", summary.heat.friction_heating},
                   {"friction_partition", number_or_null(summary.heat.friction_partition)}};
+  if (summary.bonds)
+    json["bonds"] = {{"formed", summary.bonds->formed},
+                     {"intact", summary.bonds->intact},
+                     {"broken", summary.bonds->broken_in_tension + summary.bonds->broken_in_shear},
+                     {"broken_in_tension", summary.bonds->broken_in_tension},
+                     {"broken_in_shear", summary.bonds->broken_in_shear}};
   json["stages"] = nlohmann::ordered_json::array();
   for (const StageSummary& stage : summary.stages) json["stages"].push_back(stage_to_json(stage));
   json["notices"] = summary.notices;

@@ -40,6 +40,11 @@ struct HeatSummary {
   double friction_partition = 0.5;
 };
 
+/// Parallel bonds of the run (present when the scenario has a `bonds` section).
+struct BondSummary {
+  std::uint64_t formed = 0, intact = 0, broken_in_tension = 0, broken_in_shear = 0;
+};
+
 struct RunSummary {
   RunStatus status = RunStatus::failed;
   std::string message;
@@ -60,6 +65,7 @@ struct RunSummary {
   std::string scenario_copy;        // file name of the copy in the output directory
   std::vector<std::string> overrides;  // --set key.path=value, in the order applied
   HeatSummary heat;
+  std::optional<BondSummary> bonds;
   std::vector<StageSummary> stages;
   std::vector<std::string> notices;  // what the run told the user (a full insertion region...)
 };

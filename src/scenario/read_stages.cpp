@@ -149,7 +149,7 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
   const auto stepping = section->get("heat_stepping");
   const bool frozen = stepping && stepping->node().IsScalar() &&
                       stepping->node().Scalar().starts_with("static_");
-  std::vector<std::string> allowed{"name", "duration", "until", "overrides", "heat_stepping"};
+  std::vector<std::string> allowed{"name", "duration", "until", "overrides", "heat_stepping", "form_bonds"};
   std::vector<std::pair<std::string, std::string>> misplaced;
   for (const std::string& key : kSettledKeys) {
     if (settled) {
@@ -185,6 +185,7 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
   }
 
   read_heat_stepping(*section, references, stage);
+  if (const auto bonding = section->get("form_bonds")) stage.form_bonds = read_bond_formation(*bonding, references);
   if (const auto overrides = section->get("overrides")) {
     if (const auto items = overrides->items()) {
       for (const YamlValue& override_item : *items) {

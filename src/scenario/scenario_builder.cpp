@@ -1,6 +1,7 @@
 #include "scenario/scenario_builder.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -367,6 +368,83 @@ Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, con
   return ins;
 }
 
+/// The `bonds` section as bond kinds of the simulation (DESIGN.md section 2).
+void configure_bonds(const ScenarioSpec& spec, Simulation& sim, std::vector<std::string>& lines) {
+  if (spec.bonds.empty()) {
+    for (const StageSpec& st : spec.stages)
+      if (st.form_bonds)
+        fail(st.form_bonds->where, "this stage forms bonds, but there is no `bonds` section to say what bonds "
+                                   "which materials (e.g. `bonds: [{materials: [regolith, regolith]}]`)");
+    return;
+  }
+  const std::size_t n = sim.materials.size();
+  std::vector<BondParameters> kinds;
+  std::vector<int> kind_of_pair(n * n, -1);
+  for (const BondSpec& b : spec.bonds) {
+    const MaterialIndex a = material_index(sim.materials, b.material_a, b.where);
+    const MaterialIndex c = material_index(sim.materials, b.material_b, b.where);
+    BondParameters p;
+    p.normal_stiffness_Pa_per_m = b.normal_stiffness_Pa_per_m;
+    p.shear_stiffness_Pa_per_m = b.shear_stiffness_Pa_per_m;
+    p.tensile_strength_Pa = b.tensile_strength_Pa;
+    p.shear_strength_Pa = b.shear_strength_Pa;
+    p.radius_multiplier = b.radius_multiplier;
+    p.damping_ratio = b.damping_ratio;
+    p.conducts_heat = b.conduction;
+    if (!(p.normal_stiffness_Pa_per_m > 0.0 && p.shear_stiffness_Pa_per_m > 0.0 && p.tensile_strength_Pa > 0.0 &&
+          p.shear_strength_Pa > 0.0 && p.radius_multiplier > 0.0 && p.damping_ratio >= 0.0))
+      fail(b.where, "bond stiffnesses, strengths and the radius multiplier must be greater than 0, the damping "
+                    "ratio 0 or more");
+    kind_of_pair[a * n + c] = kind_of_pair[c * n + a] = static_cast<int>(kinds.size());
+    kinds.push_back(p);
+    lines.push_back(fmt::format(
+        "bonds [{}, {}] ({}): k_n {:.4g} N/m^3, k_s {:.4g} N/m^3, sigma_c {:.4g} Pa, tau_c {:.4g} Pa, lambda_b "
+        "{:.3g}{}{}",
+        b.material_a, b.material_b, b.preset, p.normal_stiffness_Pa_per_m, p.shear_stiffness_Pa_per_m,
+        p.tensile_strength_Pa, p.shear_strength_Pa, p.radius_multiplier,
+        p.damping_ratio > 0.0 ? fmt::format(", damping ratio {:.3g}", p.damping_ratio) : std::string(),
+        p.conducts_heat ? ", conducting" : ""));
+  }
+  sim.configure_bonds(std::move(kinds), std::move(kind_of_pair));
+}
+
+/// A stage's `form_bonds` with names turned into flags.
+BondFormation bond_formation(const ScenarioSpec& spec, const BondFormationSpec& in, const Simulation& sim,
+                             const std::vector<std::string>& tags, const std::string& stage_name,
+                             std::vector<std::string>& lines) {
+  BondFormation out;
+  out.gap_fraction = in.gap_fraction;
+  if (!in.materials.empty()) {
+    out.materials.assign(sim.materials.size(), 0);
+    for (const std::string& name : in.materials) {
+      const MaterialIndex m = material_index(sim.materials, name, in.where);
+      const bool bonded = std::any_of(spec.bonds.begin(), spec.bonds.end(), [&](const BondSpec& b) {
+        return b.material_a == name || b.material_b == name;
+      });
+      if (!bonded)
+        fail(in.where, fmt::format("material '{}' has no bond kind in `bonds`: add one for it, e.g. "
+                                   "`{{materials: [{}, {}]}}`",
+                                   name, name, name));
+      out.materials[m] = 1;
+    }
+  }
+  if (!in.region_tags.empty()) {
+    out.regions.assign(tags.size(), 0);
+    for (const std::string& tag : in.region_tags) {
+      const auto found = std::find(tags.begin(), tags.end(), tag);
+      if (found == tags.end())
+        fail(in.where, fmt::format("region tag '{}' is not used by any insertion", tag));
+      out.regions[static_cast<std::size_t>(found - tags.begin())] = 1;
+    }
+  }
+  lines.push_back(fmt::format("stage '{}': forms bonds at its start between particles in contact or within a gap of {:.3g} x the "
+                              "smaller radius{}{}",
+                              stage_name, in.gap_fraction,
+                              in.materials.empty() ? "" : fmt::format(", materials {}", fmt::join(in.materials, ", ")),
+                              in.region_tags.empty() ? "" : fmt::format(", regions {}", fmt::join(in.region_tags, ", "))));
+  return out;
+}
+
 }  // namespace
 
 PreparedRun::PreparedRun() : impl_(std::make_unique<Impl>()) {}
@@ -537,6 +615,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   settings.heat.friction_partition = spec.heat.friction_partition;
   impl.simulation =
       std::make_unique<Simulation>(std::move(materials), std::move(walls), settings, std::move(wall_thermal));
+  configure_bonds(spec, *impl.simulation, lines);
 
   for (const StageSpec& st : spec.stages) {
     Stage stage;
@@ -562,6 +641,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
       po.rolling_friction = o.rolling_friction;
       stage.overrides.push_back(po);
     }
+    if (st.form_bonds) stage.form_bonds = bond_formation(spec, *st.form_bonds, *impl.simulation, tags, stage.name, lines);
     stage.heat_stepping = heat_stepping(st.heat_stepping);
     stage.thermal_time_step_s = st.thermal_time_step_s;
     stage.stability_fraction = st.stability_fraction;

@@ -25,7 +25,8 @@ const std::vector<std::string> kTopLevelKeys{
     "name",          "description", "seed",   "gravity",    "domain",
     "time_step",     "rayleigh_fraction",     "max_rayleigh_fraction",
     "neighbor_skin", "materials",   "interactions",         "walls",
-    "insertions",    "stages",      "output",               "heat"};
+    "insertions",    "stages",      "output",               "heat",
+    "bonds"};
 
 /// `auto` (returned as 0, the builder's cue to choose) or a quantity greater than 0.
 double read_auto_or_positive(const YamlSection& root, std::string_view key, Dimension dimension) {
@@ -127,6 +128,7 @@ ScenarioSpec read_tree(const YAML::Node& tree, ScenarioReadContext& context) {
     }
   }
   read_interactions(*root, references, spec);
+  read_bonds(*root, references, spec);
   read_walls(*root, references, spec);
   read_insertions(*root, references, spec);
   read_output(*root, spec);

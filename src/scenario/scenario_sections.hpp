@@ -42,6 +42,11 @@ void read_mesh_shape(const YamlSection& section, const ScenarioReferences& refer
 /// An STL or OBJ file, by its extension; throws InputError.
 TriangleMesh read_mesh_file(const std::string& path);
 MeshTransform mesh_transform(const MeshPlacementSpec& placement);
+/// The `bonds` list (bond kinds per material pair) and a stage's `form_bonds`.
+void read_bonds(const YamlSection& root, const ScenarioReferences& references,
+                ScenarioSpec& spec);                                                // read_bonds.cpp
+std::optional<BondFormationSpec> read_bond_formation(const YamlValue& value,
+                                                     const ScenarioReferences& references);  // read_bonds.cpp
 void read_insertions(const YamlSection& root, const ScenarioReferences& references,
                      ScenarioSpec& spec);                                           // read_insertions.cpp
 

@@ -200,6 +200,31 @@ struct InsertionSpec {
   SourceLocation where;
 };
 
+/// A kind of parallel bond between two materials (the `bonds` section; DESIGN.md
+/// section 2). A preset gives every value; the keys given override it.
+struct BondSpec {
+  std::string material_a, material_b;
+  std::string preset = "icy_regolith";  // or "zhao2023" (the paper's Table 2)
+  double normal_stiffness_Pa_per_m = 0.0;  // N/m^3
+  double shear_stiffness_Pa_per_m = 0.0;
+  double tensile_strength_Pa = 0.0;
+  double shear_strength_Pa = 0.0;
+  double radius_multiplier = 1.0;
+  double damping_ratio = 0.0;
+  bool conduction = false;
+  SourceLocation where;
+};
+
+/// A stage's `form_bonds`: bonds form at the stage start between particles in contact
+/// or within gap_fraction x the smaller radius, both of the listed materials and
+/// region tags (empty: all), whose material pair has a `bonds` entry.
+struct BondFormationSpec {
+  double gap_fraction = 0.0;
+  std::vector<std::string> materials;
+  std::vector<std::string> region_tags;
+  SourceLocation where;
+};
+
 /// Temporary change of contact properties during a stage (e.g. friction 0 while filling).
 struct OverrideSpec {
   std::string material_a, material_b;  // both empty: every pair
@@ -232,6 +257,7 @@ struct StageSpec {
   ThermalStepping heat_stepping = ThermalStepping::coupled;
   double thermal_time_step_s = 0.0;   // static modes; 0 = stability_fraction x the explicit limit
   double stability_fraction = 0.5;    // static explicit (and the default implicit step)
+  std::optional<BondFormationSpec> form_bonds;
   SourceLocation where;
 };
 
@@ -285,6 +311,7 @@ struct ScenarioSpec {
   std::vector<WallSpec> walls;
   std::vector<InsertionSpec> insertions;
   std::vector<StageSpec> stages;
+  std::vector<BondSpec> bonds;
   HeatSpec heat;
   OutputSpec output;
 };

@@ -149,6 +149,8 @@ constexpr std::array kDimensions{
                   "7.8 kg/m^2"},
     DimensionInfo{Dimension::temperature_gradient, UnitPowers{-1, 0, 0, 1, 0},
                   "a temperature gradient", "-50 K/m"},
+    DimensionInfo{Dimension::stiffness_per_area, UnitPowers{-2, 1, -2, 0, 0},
+                  "a stiffness per unit area", "3e10 N/m^3"},
 };
 
 const DimensionInfo& info_of(Dimension dimension) {

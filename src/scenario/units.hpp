@@ -31,6 +31,7 @@ enum class Dimension {
   heat_transfer_coefficient,  // W/(m^2 K)
   areal_density,              // kg/m^2
   temperature_gradient,       // K/m
+  stiffness_per_area,         // N/m^3: a bond's stiffness per unit area
 };
 
 /// "a length", "an angular velocity": for error messages.

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "contact/bond_store.hpp"
+
 namespace regodem {
 
 class Simulation;
@@ -62,6 +64,8 @@ class RunObserver {
   virtual void notice(const std::string& /*message*/) {}
   virtual void stage_finished(const StageInfo& /*stage*/, StageResult /*result*/,
                               const std::string& /*message*/) {}
+  /// Bonds that broke in the last step, in the order they broke.
+  virtual void bonds_broken(const std::vector<BondBreakEvent>& /*events*/) {}
 };
 
 struct RunOutcome {
@@ -76,6 +80,8 @@ struct RunOutcome {
   double particle_steps_per_s = 0.0;  // sum of particles over steps / wall time
   double time_step_s = 0.0;
   int threads = 1;
+  bool bonds_configured = false;  // the scenario has bond kinds
+  BondCounts bonds;
 };
 
 }  // namespace regodem

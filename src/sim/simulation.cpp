@@ -124,6 +124,7 @@ void Simulation::rebuild_neighbors() {
                                                              static_cast<std::size_t>(settings_.threads)));
   neighbors_.rebuild(particles, walls, grid_, settings_.neighbor_skin_m, active_threads_);
   walls.mark_neighbor_build();
+  if (!bonds_.empty()) bonds_.refresh_indices(particles);  // the rebuild re-sorted the particles
 }
 
 void Simulation::ensure_forces() {
@@ -222,6 +223,7 @@ void Simulation::compute_forces(double slip_time_s) {
     compute_forces_and_heat<true>(slip_time_s);
   else
     compute_forces_and_heat<false>(slip_time_s);
+  if (!bonds_.empty()) apply_bonds(slip_time_s);
 }
 
 template <bool Heat>

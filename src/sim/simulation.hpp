@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/bond_store.hpp"
 #include "contact/contact_parameters.hpp"
 #include "contact/neighbor_list.hpp"
 #include "core/material.hpp"
@@ -105,6 +106,24 @@ class Simulation {
   /// Re-reads k of every particle from its material at its temperature.
   void refresh_conductivities();
 
+  // Parallel bonds (DESIGN.md section 2; simulation_bonds.cpp).
+  /// The bond kinds and, per material pair (a * materials + b, symmetric), the kind
+  /// that bonds them or -1. Bonds form only by form_bonds().
+  void configure_bonds(std::vector<BondParameters> kinds, std::vector<int> kind_of_material_pair);
+  bool bonds_configured() const { return !bond_kinds_.empty(); }
+  /// Bonds every pair of particles closer than R_i + R_j + gap min(R_i, R_j) whose
+  /// materials have a bond kind, both allowed by `materials` and `regions` (flags by
+  /// material index and region tag; empty: all), and not bonded yet. Returns the number
+  /// formed. Throws SimulationError if the gap exceeds the neighbour skin or the bonds
+  /// would make the time step unstable.
+  std::size_t form_bonds(double gap_fraction, const std::vector<char>& materials = {},
+                         const std::vector<char>& regions = {});
+  const BondStore& bonds() const { return bonds_; }
+  BondCounts bond_counts() const;
+  /// The bonds broken since the last call, in the order they broke.
+  std::vector<BondBreakEvent> take_bond_breaks();
+  bool bond_breaks_pending() const { return !bond_breaks_.empty(); }
+
   ParticleStore particles;
   MaterialTable materials;
   WallSet walls;
@@ -124,6 +143,9 @@ class Simulation {
   void update_temperatures(double dt_s);
   void refresh_thermal_material_cache();
   double particle_thermal_energy_J(std::size_t i) const;
+  /// Adds the bonds' forces, torques and heat to the particles (after the contact
+  /// pass); dt_s = 0 re-evaluates the stored loads without advancing them.
+  void apply_bonds(double dt_s);
   [[noreturn]] void report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const;
 
   SimulationSettings settings_;
@@ -159,6 +181,12 @@ class Simulation {
   std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0
   std::vector<char> conductivity_varies_;      // per material: k is a table
   std::vector<WallContactHeat> wall_contact_heat_;  // per wall body, taken at each contact pass
+
+  BondStore bonds_;
+  std::vector<BondParameters> bond_kinds_;
+  std::vector<int> bond_kind_of_pair_;  // materials x materials, -1: no bond
+  BondCounts bond_counts_;
+  std::vector<BondBreakEvent> bond_breaks_;  // not yet taken
 };
 
 }  // namespace regodem

@@ -62,8 +62,16 @@ ParticleSnapshot SimulationSnapshotWriter::particle_snapshot(const Simulation& s
   s.region = p.region;
   s.contacts = contacts_;
   if (sim.heat_enabled()) s.temperature_K = p.temperature_K;
-  // Bonds: once the simulation keeps a per-particle count of intact bonds, set
-  // s.intact_bonds to it here; the writer adds the field whenever it is given.
+  // Intact bonds per particle, from the bond store's per-particle index (current after
+  // every bond pass); the field is written only for a run with bonds.
+  if (sim.bonds_configured()) {
+    const BondStore& bonds = sim.bonds();
+    intact_bonds_.assign(p.size(), 0);
+    if (bonds.bond_offset.size() == p.size() + 1)
+      for (std::size_t i = 0; i < p.size(); ++i)
+        intact_bonds_[i] = static_cast<std::uint16_t>(bonds.bond_offset[i + 1] - bonds.bond_offset[i]);
+    s.intact_bonds = intact_bonds_;
+  }
   for (std::size_t m = 0; m < sim.materials.size(); ++m)
     s.material_names.push_back(sim.materials[static_cast<MaterialIndex>(m)].name);
   s.region_names = region_names_;

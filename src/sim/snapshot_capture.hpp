@@ -35,6 +35,7 @@ class SimulationSnapshotWriter {
   SnapshotSeries series_;
   std::vector<std::string> region_names_;
   std::vector<std::uint32_t> contacts_;  // the buffer the particle snapshot views
+  std::vector<std::uint16_t> intact_bonds_;
   WallSurface surface_;                  // the buffer the wall snapshot points to
 };
 

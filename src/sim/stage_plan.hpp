@@ -23,6 +23,14 @@ struct PairOverride {
 /// How a stage moves heat (see ThermalStepping in the scenario spec).
 enum class HeatStepping { coupled, static_explicit, static_backward_euler, static_crank_nicolson };
 
+/// Bonds formed at a stage's start (Simulation::form_bonds): flags by material index
+/// and region tag, empty for all.
+struct BondFormation {
+  double gap_fraction = 0.0;
+  std::vector<char> materials;
+  std::vector<char> regions;
+};
+
 struct Stage {
   std::string name;
   bool until_settled = false;
@@ -40,6 +48,7 @@ struct Stage {
   HeatStepping heat_stepping = HeatStepping::coupled;
   double thermal_time_step_s = 0.0;  // 0: stability_fraction x the explicit limit
   double stability_fraction = 0.5;
+  std::optional<BondFormation> form_bonds;
   bool freezes_mechanics() const { return heat_stepping != HeatStepping::coupled; }
   /// The default heat step of a static-bed stage, in explicit stability limits: the
   /// fraction for explicit stepping; implicit methods are stable at any step and by

@@ -112,6 +112,7 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
     if (fed(wall)) columns.insert(columns.end(), {{wall.name + ".depth", "m"}, {wall.name + ".thrust", "N"}});
     if (spun(wall)) columns.push_back({wall.name + ".drive_torque", "N m"});
   }
+  if (sim.bonds_configured()) columns.insert(columns.end(), {{"bonds_intact", "-"}, {"bonds_broken", "-"}});
   if (!sim.heat_enabled()) return columns;
   columns.insert(columns.end(), {{"temperature_mean", "K"},
                                  {"temperature_min", "K"},
@@ -151,6 +152,10 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
     row.insert(row.end(), {wall.torque_N_m.x, wall.torque_N_m.y, wall.torque_N_m.z});
     if (fed(wall)) row.insert(row.end(), {wall.depth_m(), -dot(wall.force_N, wall.feed_direction)});
     if (spun(wall)) row.push_back(-dot(wall.torque_N_m, wall.spin_axis));
+  }
+  if (sim.bonds_configured()) {
+    const BondCounts bonds = sim.bond_counts();
+    row.insert(row.end(), {static_cast<double>(bonds.intact), static_cast<double>(bonds.broken())});
   }
   if (!sim.heat_enabled()) return row;
   double sum = 0.0, lowest = std::numeric_limits<double>::quiet_NaN(), highest = lowest;
@@ -199,6 +204,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     outcome.simulated_time_s = sim.time_s();
     outcome.wall_s = seconds_since(run_start);
     outcome.particle_steps_per_s = outcome.wall_s > 0.0 ? particle_steps / outcome.wall_s : 0.0;
+    outcome.bonds_configured = sim.bonds_configured();
+    outcome.bonds = sim.bond_counts();
     return outcome;
   };
 
@@ -227,6 +234,12 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     std::string failure;
     StageResult result = StageResult::finished;
     try {
+      if (stage.form_bonds) {
+        const BondFormation& f = *stage.form_bonds;
+        const std::size_t formed = sim.form_bonds(f.gap_fraction, f.materials, f.regions);
+        observer.notice(fmt::format("stage '{}': formed {} bonds ({} intact in all)", stage.name, formed,
+                                    sim.bond_counts().intact));
+      }
       if (stage.freezes_mechanics())
         frozen.emplace(sim, stage);
       else
@@ -341,8 +354,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           const double remaining_s = stage_end_s - sim.time_s();
           if (remaining_s <= 0.0) break;
           frozen->advance(std::min(step_s, remaining_s));
-        } else
+        } else {
           sim.step();
+          if (sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
+        }
         ++done;
         snapshots.count_step();
         particle_steps += static_cast<double>(sim.particles.size());

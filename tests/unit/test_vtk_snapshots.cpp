@@ -358,3 +358,59 @@ TEST(VtkReadBack, RegodemRunWritesCollectionsThatVtkReads) {
 
 }  // namespace
 }  // namespace regodem
+
+namespace regodem {
+namespace {
+
+// A bonded pair: each particle's snapshot shows one intact bond; without bonds the
+// field is absent (not zeros).
+TEST(SnapshotCapture, IntactBondsPerParticle) {
+  MaterialTable materials;
+  Material grain;
+  grain.name = "grain";
+  grain.density_kg_per_m3 = 2500.0;
+  grain.shear_modulus_Pa = 1e8;
+  grain.poisson_ratio = 0.25;
+  materials.add(grain);
+  materials.set_pair(0, 0, PairProperties{});
+  SimulationSettings settings;
+  settings.domain = {{-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}};
+  settings.gravity_m_per_s2 = {};
+  settings.time_step_s = 1e-7;
+  settings.neighbor_skin_m = 2e-4;
+  settings.min_particle_radius_m = 1e-3;
+  for (const bool bonded : {false, true}) {
+    Simulation sim(materials, WallSet{}, settings);
+    for (const double x : {-1e-3, 1e-3, 5e-3}) {
+      NewParticle p;
+      p.position_m = {x, 0.0, 0.0};
+      p.radius_m = 1e-3;
+      p.density_kg_per_m3 = 2500.0;
+      sim.add_particle(p);
+    }
+    if (bonded) {
+      BondParameters bond;
+      bond.normal_stiffness_Pa_per_m = 1e11;
+      bond.shear_stiffness_Pa_per_m = 4e10;
+      bond.tensile_strength_Pa = 1e6;
+      bond.shear_strength_Pa = 1e6;
+      sim.configure_bonds({bond}, {0});
+      ASSERT_EQ(sim.form_bonds(0.01), 1u);
+    }
+    sim.step();
+    SimulationSnapshotWriter writer(std::filesystem::temp_directory_path() / "regodem-bond-snapshot", VtpOptions{},
+                                    false, {});
+    const ParticleSnapshot snap = writer.particle_snapshot(sim);
+    if (!bonded) {
+      EXPECT_TRUE(snap.intact_bonds.empty());
+      continue;
+    }
+    ASSERT_EQ(snap.intact_bonds.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i)
+      EXPECT_EQ(snap.intact_bonds[i], sim.particles.position_m[i].x > 4e-3 ? 0 : 1) << i;
+  }
+  std::filesystem::remove_all(std::filesystem::temp_directory_path() / "regodem-bond-snapshot");
+}
+
+}  // namespace
+}  // namespace regodem

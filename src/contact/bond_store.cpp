@@ -1,0 +1,86 @@
+#include "contact/bond_store.hpp"
+
+#include <limits>
+
+namespace regodem {
+namespace {
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+}
+
+void BondStore::add(const ParticleStore& particles, std::uint32_t a, std::uint32_t b, std::uint16_t bond_kind,
+                    const BondSection& bond_section) {
+  id_i.push_back(particles.id[a]);
+  id_j.push_back(particles.id[b]);
+  local_i.push_back(a);
+  local_j.push_back(b);
+  kind.push_back(bond_kind);
+  const Vec3 d = particles.position_m[b] - particles.position_m[a];
+  rest_length_m.push_back(norm(d));
+  section.push_back(bond_section);
+  normal.push_back(normalized(d));
+  loads.push_back({});
+  action.push_back({});
+  heat_to_i_W.push_back(0.0);
+  broken.push_back(0);
+}
+
+void BondStore::refresh_indices(const ParticleStore& particles) {
+  const std::size_t n = particles.size();
+  index_of_id_.assign(particles.next_id(), kNone);
+  for (std::size_t p = 0; p < n; ++p) index_of_id_[particles.id[p]] = static_cast<std::uint32_t>(p);
+  for (std::size_t b = 0; b < size(); ++b) {
+    local_i[b] = index_of_id_[id_i[b]];
+    local_j[b] = index_of_id_[id_j[b]];
+  }
+  rebuild_per_particle(n);
+}
+
+void BondStore::remove_broken(const ParticleStore& particles) {
+  std::size_t kept = 0;
+  for (std::size_t b = 0; b < size(); ++b) {
+    if (broken[b]) continue;
+    id_i[kept] = id_i[b];
+    id_j[kept] = id_j[b];
+    local_i[kept] = local_i[b];
+    local_j[kept] = local_j[b];
+    kind[kept] = kind[b];
+    rest_length_m[kept] = rest_length_m[b];
+    section[kept] = section[b];
+    normal[kept] = normal[b];
+    loads[kept] = loads[b];
+    action[kept] = action[b];
+    heat_to_i_W[kept] = heat_to_i_W[b];
+    broken[kept] = 0;
+    ++kept;
+  }
+  for (auto* field : {&id_i, &id_j}) field->resize(kept);
+  for (auto* field : {&local_i, &local_j}) field->resize(kept);
+  kind.resize(kept);
+  rest_length_m.resize(kept);
+  section.resize(kept);
+  normal.resize(kept);
+  loads.resize(kept);
+  action.resize(kept);
+  heat_to_i_W.resize(kept);
+  broken.resize(kept);
+  rebuild_per_particle(particles.size());
+}
+
+void BondStore::rebuild_per_particle(std::size_t particle_count) {
+  // Counting sort by particle; within a particle the entries follow bond order, so
+  // the gather sums in an order fixed by the bond list alone.
+  bond_offset.assign(particle_count + 1, 0);
+  for (std::size_t b = 0; b < size(); ++b) {
+    ++bond_offset[local_i[b] + 1];
+    ++bond_offset[local_j[b] + 1];
+  }
+  for (std::size_t p = 0; p < particle_count; ++p) bond_offset[p + 1] += bond_offset[p];
+  bond_entry.resize(2 * size());
+  std::vector<std::uint32_t> fill(bond_offset.begin(), bond_offset.end() - 1);
+  for (std::size_t b = 0; b < size(); ++b) {
+    bond_entry[fill[local_i[b]]++] = static_cast<std::uint32_t>(2 * b);
+    bond_entry[fill[local_j[b]]++] = static_cast<std::uint32_t>(2 * b + 1);
+  }
+}
+
+}  // namespace regodem

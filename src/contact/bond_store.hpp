@@ -1,0 +1,69 @@
+#pragma once
+// The intact parallel bonds as a structure of arrays, keyed by global particle ids
+// (particles are re-sorted at every neighbour build), with the local index of each end
+// refreshed after each sort, and a per-particle index of its bonds (CSR) so that each
+// particle gathers its bonds' forces in a fixed order: parallel without races, and
+// deterministic for any thread count.
+#include <cstdint>
+#include <vector>
+
+#include "contact/parallel_bond.hpp"
+#include "core/particle_store.hpp"
+
+namespace regodem {
+
+/// One bond broken for good: when, where (the bond centre), how, and its stresses.
+struct BondBreakEvent {
+  double time_s = 0.0;
+  Vec3 position_m;
+  BondBreak mode = BondBreak::tension;
+  ParticleId particle_i = 0, particle_j = 0;
+  double tensile_stress_Pa = 0.0, shear_stress_Pa = 0.0;
+};
+
+/// Bond totals for outputs.
+struct BondCounts {
+  std::uint64_t formed = 0;
+  std::uint64_t intact = 0;
+  std::uint64_t broken_in_tension = 0;
+  std::uint64_t broken_in_shear = 0;
+  std::uint64_t broken() const { return broken_in_tension + broken_in_shear; }
+};
+
+class BondStore {
+ public:
+  // Per-bond fields (shape: size()).
+  std::vector<ParticleId> id_i, id_j;        // the two ends, global ids
+  std::vector<std::uint32_t> local_i, local_j;  // their current indices in the ParticleStore
+  std::vector<std::uint16_t> kind;           // index into the bond parameter table
+  std::vector<double> rest_length_m;         // L0, the centre distance at formation
+  std::vector<BondSection> section;
+  std::vector<Vec3> normal;                  // n of the last update, from i to j
+  std::vector<BondLoads> loads;
+  // Written by the bond pass, one per bond, then gathered per particle.
+  std::vector<BondAction> action;
+  std::vector<double> heat_to_i_W;           // conduction through the bond (0 when off)
+  std::vector<std::uint8_t> broken;          // BondBreak of this step (none: intact)
+
+  // Bonds of each local particle: entries bond_entry[bond_offset[p] .. bond_offset[p+1]),
+  // each 2 b + (0 when p is end i, 1 when end j), in bond order.
+  std::vector<std::uint32_t> bond_offset;
+  std::vector<std::uint32_t> bond_entry;
+
+  std::size_t size() const { return id_i.size(); }
+  bool empty() const { return id_i.empty(); }
+
+  /// Appends an unloaded bond between local particles a and b (sizes the scratch fields).
+  void add(const ParticleStore& particles, std::uint32_t a, std::uint32_t b, std::uint16_t bond_kind,
+           const BondSection& bond_section);
+  /// Refreshes local indices from ids after the particles were reordered, and the CSR.
+  void refresh_indices(const ParticleStore& particles);
+  /// Removes the bonds flagged broken (keeping the order of the rest) and refreshes the CSR.
+  void remove_broken(const ParticleStore& particles);
+
+ private:
+  void rebuild_per_particle(std::size_t particle_count);
+  std::vector<std::uint32_t> index_of_id_;  // by global id; kNone where absent
+};
+
+}  // namespace regodem

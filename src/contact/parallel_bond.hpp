@@ -1,0 +1,117 @@
+#pragma once
+// The parallel bond (Potyondy & Cundall 2004; DESIGN.md section 2, "Parallel bonds"):
+// a cemented disk of radius R_b = lambda_b min(R_i, R_j) between two spheres, acting
+// in parallel with the Hertz-Mindlin contact. This header holds the per-bond law only
+// (parameters, state, one update, the stresses); the bond list is bond_store.hpp and
+// the pass over all bonds lives in sim/simulation_bonds.cpp.
+//
+// Particles carry no orientation, so the bond keeps its loads as vectors in the world
+// frame and turns them with the pair each step (see update_bond):
+//   * F_n: tension (> 0) or compression (< 0) along the bond normal n (from i to j),
+//     total form F_n = k_n A (L - L0), L the centre distance, L0 at formation: the
+//     same as summing dF_n = k_n A du_n, without drift;
+//   * F_s: shear force on i, in the plane normal to n, dF_s = k_s A du_s;
+//   * M_t: twisting moment on i about n (a scalar), dM_t = k_s J dtheta_n;
+//   * M_b: bending moment on i, in the plane normal to n, dM_b = k_n I dtheta_s.
+// du and dtheta are the relative motion of j with respect to i at the bond over the
+// step (j's contact point velocity minus i's, times dt; omega_j - omega_i times dt).
+// So a stretched bond pulls i towards j (force on i = F_n n + F_s), a sheared one drags
+// i along with j, and j feels the opposite force; torque on i = M_t n + M_b +
+// arm_i n x F_s, on j = -M_t n - M_b + arm_j n x F_s.
+#include <cstdint>
+
+#include "core/vec3.hpp"
+
+namespace regodem {
+
+/// Constants of one kind of bond (per material pair).
+struct BondParameters {
+  double normal_stiffness_Pa_per_m = 0.0;  // k_n, stiffness per unit area (N/m^3)
+  double shear_stiffness_Pa_per_m = 0.0;   // k_s
+  double tensile_strength_Pa = 0.0;        // sigma_c
+  double shear_strength_Pa = 0.0;          // tau_c
+  double radius_multiplier = 1.0;          // lambda_b: R_b = lambda_b min(R_i, R_j)
+  // Viscous damping of the relative motion at the bond as a fraction of critical
+  // (2 zeta sqrt(k m*) per component); 0, as in EDEM and the paper, by default. It
+  // damps the force only and never enters the stresses that break the bond.
+  double damping_ratio = 0.0;
+  // Conduction through the bond: the bond radius acts as a contact radius,
+  // G = 2 k_c R_b (DESIGN.md Eq. 1 with a = R_b), off by default as in the paper.
+  bool conducts_heat = false;
+};
+
+/// The paper's Table 2 (Zhao et al. 2023): k_n = 3e10 N/m^3, k_s = 1.5e9 N/m^3,
+/// sigma_c = 1.2e11 Pa, tau_c = 6e10 Pa, lambda_b = 1. Practically unbreakable: a
+/// 0.6 mm bond holds ~34 kN and stretches ~4 m first (DESIGN.md section 2).
+BondParameters zhao2023_bond_parameters();
+/// The default set, icy regolith at cryogenic temperature (docs/physics.md, "Parallel
+/// bonds", explains the choice and its sources): k_n = 1e12 N/m^3, k_s = 4e11 N/m^3,
+/// sigma_c = tau_c = 30 MPa, lambda_b = 1.
+BondParameters icy_regolith_bond_parameters();
+
+/// Geometric constants of a bond of radius R_b: A = pi R_b^2, I = pi R_b^4/4, J = 2I.
+struct BondSection {
+  double radius_m = 0.0;
+  double area_m2 = 0.0;
+  double inertia_m4 = 0.0;        // I, bending
+  double polar_inertia_m4 = 0.0;  // J, twisting
+  // 1/A, R_b/I and R_b/J: the stress check runs every step, without divisions.
+  double inv_area_per_m2 = 0.0;
+  double radius_over_inertia_per_m3 = 0.0;
+  double radius_over_polar_inertia_per_m3 = 0.0;
+  static BondSection of_radius(double radius_m);
+};
+
+/// The loads a bond carries (world frame, see the header comment).
+struct BondLoads {
+  double normal_force_N = 0.0;  // F_n, tension positive
+  Vec3 shear_force_N;           // F_s on i
+  double twist_moment_N_m = 0.0;  // M_t on i about n
+  Vec3 bend_moment_N_m;         // M_b on i
+};
+
+/// Positions and motions of the two particles at the end of a step: what one bond
+/// update needs. Velocities are those over the step (the half-step velocities of
+/// velocity Verlet, which moved the positions).
+struct BondKinematics {
+  Vec3 position_i_m, position_j_m;
+  Vec3 velocity_i_m_per_s, velocity_j_m_per_s;
+  Vec3 angular_velocity_i_rad_per_s, angular_velocity_j_rad_per_s;
+  double radius_i_m = 0.0, radius_j_m = 0.0;
+};
+
+enum class BondBreak : std::uint8_t { none, tension, shear };
+
+/// sigma = F_n/A + |M_b| R_b/I and tau = |F_s|/A + |M_t| R_b/J (DESIGN.md section 2).
+struct BondStresses {
+  double tensile_Pa = 0.0;
+  double shear_Pa = 0.0;
+};
+BondStresses bond_stresses(const BondLoads& loads, const BondSection& section);
+/// Tension when sigma > sigma_c, shear when tau > tau_c; where both fail, the criterion
+/// exceeded by the larger ratio to its strength names the mode.
+BondBreak bond_failure(const BondStresses& stresses, const BondParameters& p);
+
+/// Rotates v by the rotation vector phi (axis phi/|phi|, angle |phi|; Rodrigues).
+Vec3 rotate_by(const Vec3& v, const Vec3& phi);
+/// The smallest rotation that takes unit vector a to unit vector b, applied to v.
+Vec3 rotate_between(const Vec3& v, const Vec3& a, const Vec3& b);
+
+/// What one update returns: forces and torques on both particles (j's force is the
+/// opposite of i's), including damping.
+struct BondAction {
+  Vec3 force_on_i_N;
+  Vec3 torque_on_i_N_m;
+  Vec3 torque_on_j_N_m;
+};
+
+/// One step of a bond: turns the stored loads with the pair (the mean spin of the two
+/// particles, then the remaining change of the normal), adds the increments of the
+/// step (dt), sets F_n from the stretch, and returns the forces. `normal` is the bond
+/// normal of the previous step, updated here; rest_length_m is L0. effective_mass_kg
+/// and effective_inertia (of the pair) scale the optional damping only.
+BondAction update_bond(const BondParameters& p, const BondSection& section, double rest_length_m,
+                       const BondKinematics& k, double dt_s, double effective_mass_kg,
+                       double effective_inertia_kg_m2, Vec3& normal, BondLoads& loads);
+
+}  // namespace regodem

@@ -1,0 +1,226 @@
+// The parallel-bond pass and bond formation (DESIGN.md section 2, "Parallel bonds").
+//
+// Each step, after the contact pass: every bond is updated on its own (in parallel)
+// into its per-bond action, broken bonds act no more, and then every particle gathers
+// the actions of its bonds in bond order (the CSR of BondStore): no two threads write
+// one particle, and the sums do not depend on the thread count.
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+#include "core/error.hpp"
+#include "sim/simulation.hpp"
+
+namespace regodem {
+
+void Simulation::configure_bonds(std::vector<BondParameters> kinds, std::vector<int> kind_of_material_pair) {
+  const std::size_t n = materials.size();
+  if (kind_of_material_pair.size() != n * n)
+    throw InputError(fmt::format("bond kinds given for {} material pairs, expected {}", kind_of_material_pair.size(), n * n));
+  for (const BondParameters& p : kinds)
+    if (!(p.normal_stiffness_Pa_per_m > 0.0 && p.shear_stiffness_Pa_per_m > 0.0 && p.tensile_strength_Pa > 0.0 &&
+          p.shear_strength_Pa > 0.0 && p.radius_multiplier > 0.0 && p.damping_ratio >= 0.0))
+      throw InputError(fmt::format(
+          "bond parameters must be positive: stiffness {:.4g}, {:.4g} N/m^3, strength {:.4g}, {:.4g} Pa, radius "
+          "multiplier {:.4g}, damping ratio {:.4g} (0 or more)",
+          p.normal_stiffness_Pa_per_m, p.shear_stiffness_Pa_per_m, p.tensile_strength_Pa, p.shear_strength_Pa,
+          p.radius_multiplier, p.damping_ratio));
+  for (int k : kind_of_material_pair)
+    if (k >= static_cast<int>(kinds.size()))
+      throw InputError(fmt::format("bond kind {} of {} does not exist", k, kinds.size()));
+  bond_kinds_ = std::move(kinds);
+  bond_kind_of_pair_ = std::move(kind_of_material_pair);
+}
+
+BondCounts Simulation::bond_counts() const {
+  BondCounts c = bond_counts_;
+  c.intact = bonds_.size();
+  return c;
+}
+
+std::vector<BondBreakEvent> Simulation::take_bond_breaks() {
+  std::vector<BondBreakEvent> taken;
+  taken.swap(bond_breaks_);
+  return taken;
+}
+
+std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>& material_allowed,
+                                   const std::vector<char>& region_allowed) {
+  if (!bonds_configured()) throw InputError("bonds are formed, but no bond kinds are configured");
+  if (!(gap_fraction >= 0.0)) throw InputError(fmt::format("the bonding gap must be 0 or more, got {}", gap_fraction));
+  // A current list holds every pair closer than R_i + R_j + skin.
+  rebuild_neighbors();
+  forces_current_ = false;
+  const std::size_t n_materials = materials.size();
+  auto allowed = [&](std::uint32_t p) {
+    const bool material_ok = material_allowed.empty() || material_allowed[particles.material[p]];
+    const bool region_ok = region_allowed.empty() ||
+                           (particles.region[p] < region_allowed.size() && region_allowed[particles.region[p]]);
+    return material_ok && region_ok;
+  };
+  auto key = [](ParticleId a, ParticleId b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | std::max(a, b);
+  };
+  std::unordered_set<std::uint64_t> existing;
+  for (std::size_t b = 0; b < bonds_.size(); ++b) existing.insert(key(bonds_.id_i[b], bonds_.id_j[b]));
+
+  const std::size_t before = bonds_.size();
+  const std::size_t n = particles.size();
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!allowed(i)) continue;
+    for (std::uint32_t k = neighbors_.offset[i]; k < neighbors_.offset[i + 1]; ++k) {
+      const std::uint32_t j = neighbors_.partner[k];
+      if (!allowed(j)) continue;
+      const int bond_kind = bond_kind_of_pair_[particles.material[i] * n_materials + particles.material[j]];
+      if (bond_kind < 0) continue;
+      const double ri = particles.radius_m[i], rj = particles.radius_m[j];
+      const double gap = gap_fraction * std::min(ri, rj);
+      if (gap > settings_.neighbor_skin_m)
+        throw SimulationError(fmt::format(
+            "the bonding gap {:.4g} m ({} x the radius {:.4g} m) is larger than the neighbour skin {:.4g} m, so "
+            "pairs that far apart are not all listed: use a smaller gap or a larger neighbor_skin",
+            gap, gap_fraction, std::min(ri, rj), settings_.neighbor_skin_m));
+      if (norm(particles.position_m[j] - particles.position_m[i]) > ri + rj + gap) continue;
+      if (!existing.insert(key(particles.id[i], particles.id[j])).second) continue;
+      const BondParameters& p = bond_kinds_[static_cast<std::size_t>(bond_kind)];
+      bonds_.add(particles, i, j, static_cast<std::uint16_t>(bond_kind),
+                 BondSection::of_radius(p.radius_multiplier * std::min(ri, rj)));
+    }
+  }
+  bonds_.refresh_indices(particles);
+  const std::size_t formed = bonds_.size() - before;
+  bond_counts_.formed += formed;
+
+  // Explicit stability of the bond springs: sum over a particle's bonds of k/m (and
+  // the rotational stiffness, with the shear spring's lever arm, over its moment of
+  // inertia) bounds its highest frequency omega. Velocity Verlet with a damping ratio
+  // zeta is stable for omega dt < 2 (sqrt(1 + zeta^2) - zeta); we ask for half of that.
+  double worst = 0.0, limit = 1.0;
+  std::uint32_t worst_particle = 0;
+  for (std::uint32_t q = 0; q < n; ++q) {
+    double translational = 0.0, rotational = 0.0;
+    for (std::uint32_t e = bonds_.bond_offset[q]; e < bonds_.bond_offset[q + 1]; ++e) {
+      const std::uint32_t b = bonds_.bond_entry[e] / 2;
+      const BondParameters& p = bond_kinds_[bonds_.kind[b]];
+      const BondSection& s = bonds_.section[b];
+      const double arm = particles.radius_m[q];
+      limit = std::min(limit, std::sqrt(1.0 + p.damping_ratio * p.damping_ratio) - p.damping_ratio);
+      translational += std::max(p.normal_stiffness_Pa_per_m, p.shear_stiffness_Pa_per_m) * s.area_m2;
+      rotational += p.normal_stiffness_Pa_per_m * s.inertia_m4 + p.shear_stiffness_Pa_per_m * s.polar_inertia_m4 +
+                    p.shear_stiffness_Pa_per_m * s.area_m2 * arm * arm;
+    }
+    const double omega2 = std::max(translational * particles.inv_mass_per_kg[q], rotational * particles.inv_inertia[q]);
+    if (omega2 > worst) worst = omega2, worst_particle = q;
+  }
+  const double dt = settings_.time_step_s;
+  if (std::sqrt(worst) * dt > limit)
+    throw SimulationError(fmt::format(
+        "the bonds make the time step {:.4g} s unstable: particle {} has a bond frequency of {:.4g} rad/s, which "
+        "needs a step below {:.4g} s; use a smaller step, softer bonds or less bond damping",
+        dt, particles.id[worst_particle], std::sqrt(worst), limit / std::sqrt(worst)));
+  return formed;
+}
+
+void Simulation::apply_bonds(double dt_s) {
+  const std::size_t nb = bonds_.size();
+  const int threads = active_threads_;
+  const Vec3* __restrict x = particles.position_m.data();
+  const Vec3* __restrict v = particles.velocity_m_per_s.data();
+  const Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
+  const double* __restrict radius = particles.radius_m.data();
+  const double* __restrict inv_mass = particles.inv_mass_per_kg.data();
+  const double* __restrict inv_inertia = particles.inv_inertia.data();
+  const double* __restrict temperature = particles.temperature_K.data();
+  const double* __restrict conductivity = particles.conductivity_W_per_mK.data();
+  const bool heat = heat_enabled();
+  const double heat_scale = settings_.heat.time_scale_factor;
+  int any_broken = 0;
+
+#pragma omp parallel for schedule(static) num_threads(threads) if (nb > 2048) reduction(max : any_broken)
+  for (std::size_t b = 0; b < nb; ++b) {
+    const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
+    const BondParameters& p = bond_kinds_[bonds_.kind[b]];
+    BondKinematics k;
+    k.position_i_m = x[i];
+    k.position_j_m = x[j];
+    k.velocity_i_m_per_s = v[i];
+    k.velocity_j_m_per_s = v[j];
+    k.angular_velocity_i_rad_per_s = w[i];
+    k.angular_velocity_j_rad_per_s = w[j];
+    k.radius_i_m = radius[i];
+    k.radius_j_m = radius[j];
+    const double inv_m = inv_mass[i] + inv_mass[j], inv_i = inv_inertia[i] + inv_inertia[j];
+    const BondSection& section = bonds_.section[b];
+    BondAction a = update_bond(p, section, bonds_.rest_length_m[b], k, dt_s, inv_m > 0.0 ? 1.0 / inv_m : 0.0,
+                               inv_i > 0.0 ? 1.0 / inv_i : 0.0, bonds_.normal[b], bonds_.loads[b]);
+    const BondBreak mode = bond_failure(bond_stresses(bonds_.loads[b], section), p);
+    bonds_.broken[b] = static_cast<std::uint8_t>(mode);
+    double q = 0.0;
+    if (mode != BondBreak::none) {
+      a = {};  // gone for good: it acts no more, from this step on
+      any_broken = 1;
+    } else if (heat && p.conducts_heat) {
+      // The bond radius as a contact radius: G = 2 k_c R_b S (paper Eq. 1 with a = R_b).
+      const double ki = conductivity[i], kj = conductivity[j];
+      const double k_c = ki + kj > 0.0 ? 2.0 * ki * kj / (ki + kj) : 0.0;
+      q = 2.0 * k_c * section.radius_m * heat_scale * (temperature[j] - temperature[i]);
+    }
+    bonds_.action[b] = a;
+    bonds_.heat_to_i_W[b] = q;
+  }
+
+  // Each particle sums its own bonds, in bond order.
+  const std::size_t n = particles.size();
+  Vec3* __restrict force = particles.force_N.data();
+  Vec3* __restrict torque = particles.torque_N_m.data();
+  double* __restrict heat_flow = particles.heat_flow_W.data();
+  const std::uint32_t* __restrict offset = bonds_.bond_offset.data();
+  const std::uint32_t* __restrict entry = bonds_.bond_entry.data();
+  const BondAction* __restrict action = bonds_.action.data();
+  const double* __restrict bond_heat = bonds_.heat_to_i_W.data();
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
+  for (std::size_t q = 0; q < n; ++q) {
+    Vec3 f, t;
+    double h = 0.0;
+    for (std::uint32_t e = offset[q]; e < offset[q + 1]; ++e) {
+      const std::uint32_t b = entry[e] >> 1;
+      if ((entry[e] & 1u) == 0) {
+        f += action[b].force_on_i_N;
+        t += action[b].torque_on_i_N_m;
+        h += bond_heat[b];
+      } else {
+        f -= action[b].force_on_i_N;
+        t += action[b].torque_on_j_N_m;
+        h -= bond_heat[b];
+      }
+    }
+    force[q] += f;
+    torque[q] += t;
+    if (heat) heat_flow[q] += h;
+  }
+
+  if (!any_broken) return;
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (!bonds_.broken[b]) continue;
+    const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
+    const Vec3 n_ij = bonds_.normal[b];
+    const double length = norm(x[j] - x[i]);
+    const BondStresses s = bond_stresses(bonds_.loads[b], bonds_.section[b]);
+    BondBreakEvent e;
+    e.time_s = time_s_;
+    e.position_m = x[i] + n_ij * (0.5 * (length + radius[i] - radius[j]));
+    e.mode = static_cast<BondBreak>(bonds_.broken[b]);
+    e.particle_i = bonds_.id_i[b];
+    e.particle_j = bonds_.id_j[b];
+    e.tensile_stress_Pa = s.tensile_Pa;
+    e.shear_stress_Pa = s.shear_Pa;
+    (e.mode == BondBreak::tension ? bond_counts_.broken_in_tension : bond_counts_.broken_in_shear)++;
+    bond_breaks_.push_back(e);
+  }
+  bonds_.remove_broken(particles);
+}
+
+}  // namespace regodem

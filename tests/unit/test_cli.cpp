@@ -205,11 +205,17 @@ TEST_F(CliTest, ValidatePrintsThePlanAndRunsNothing) {
   EXPECT_FALSE(fs::exists(directory_ / "out"));
 }
 
-TEST_F(CliTest, DemoScenarioValidates) {
-  const CommandResult result =
-      run_regodem({"validate", std::string(REGODEM_SOURCE_DIR) + "/scenarios/demo.yaml"}, directory_);
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_TRUE(contains(result.output, "scenario OK")) << result.output;
+// Every shipped scenario (scenarios/, including subfolders) reads and builds.
+TEST_F(CliTest, ShippedScenariosValidate) {
+  int count = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(std::string(REGODEM_SOURCE_DIR) + "/scenarios")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++count;
+    const CommandResult result = run_regodem({"validate", entry.path().string()}, directory_);
+    EXPECT_EQ(result.exit_code, 0) << entry.path() << "\n" << result.output;
+    EXPECT_TRUE(contains(result.output, "scenario OK")) << entry.path() << "\n" << result.output;
+  }
+  EXPECT_GE(count, 2);  // demo.yaml and drill-small.yaml at least
 }
 
 TEST_F(CliTest, RunWritesSummaryTimeSeriesAndReproductionFiles) {

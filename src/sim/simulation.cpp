@@ -420,16 +420,19 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       }
 
       // Mesh walls: the entries of one mesh form a run; its touches are counted once
-      // per face, edge or vertex (MeshTouchFinder).
-      for_each_mesh_run(neighbors_, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
-        const MeshWall& mesh = meshes[wall_index];
-        finder.find(mesh, bodies[mesh.body].pose, mesh_triangle + g, g_end - g, xi, ri, touches);
-        Vec3* spring = mesh_history + g;
-        carry_mesh_springs(mesh.mesh, mesh_triangle + g, g_end - g, touches, spring, touched);
-        for (const MeshTouch& touch : touches)
-          touch_wall(touch.distance_m, touch.normal, touch.contact_point_m, mesh.material, mesh.body,
-                     spring[touch.entry]);
-      });
+      // per face, edge or vertex (MeshTouchFinder). Most particles have none: the test
+      // saves the call (1 % of the pass in a profile).
+      if (neighbors_.mesh_offset[i] != neighbors_.mesh_offset[i + 1]) {
+        for_each_mesh_run(neighbors_, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
+          const MeshWall& mesh = meshes[wall_index];
+          finder.find(mesh, bodies[mesh.body].pose, mesh_triangle + g, g_end - g, xi, ri, touches);
+          Vec3* spring = mesh_history + g;
+          carry_mesh_springs(mesh.mesh, mesh_triangle + g, g_end - g, touches, spring, touched);
+          for (const MeshTouch& touch : touches)
+            touch_wall(touch.distance_m, touch.normal, touch.contact_point_m, mesh.material, mesh.body,
+                       spring[touch.entry]);
+        });
+      }
       force[i] += force_i;
       torque[i] += torque_i;
       if constexpr (Heat) heat[i] += heat_i;

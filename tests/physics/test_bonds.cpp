@@ -308,3 +308,48 @@ TEST(BondedBlock, TwoThreadRunsAreIdenticalAndCountEveryBreak) {
 
 }  // namespace
 }  // namespace regodem::testing
+
+namespace regodem::testing {
+namespace {
+
+// Conduction through a bond (optional, off by default): two equal spheres 0.5 % of a
+// radius apart (no contact) joined by a conducting bond, G = 2 k R_b S, relax as
+// dT/dt = -2 G dT / (m c): the difference falls as exp(-2 G t / (m c)) within 0.5 %
+// (explicit steps of 1e-5 of the time constant), energy kept to 1e-12; with conduction
+// off the temperatures do not change at all.
+TEST(BondHeat, ConductingBondRelaxesTwoSpheresWithItsConductance) {
+  for (const bool conducts : {true, false}) {
+    SphereMaterial m;
+    const double dt = 0.1 * rayleigh_time_for(m, kRadius);
+    SimulationSettings settings = settings_for(kRadius, dt);
+    settings.heat.enabled = true;
+    Simulation sim(one_material(m), WallSet{}, settings);
+    const double gap = 0.005 * kRadius;
+    sim.add_particle(sphere({-kRadius - 0.5 * gap, 0, 0}, {}, kRadius, m.density, 300.0));
+    sim.add_particle(sphere({kRadius + 0.5 * gap, 0, 0}, {}, kRadius, m.density, 100.0));
+    BondParameters p = test_bond();
+    p.conducts_heat = conducts;
+    sim.configure_bonds({p}, {0});
+    ASSERT_EQ(sim.form_bonds(0.01), 1u);
+    drive(sim, 0, {}, {});
+    drive(sim, 1, {}, {});
+    const double energy0 = sim.thermal_energy_J();
+    const double duration = 0.1;
+    sim.advance(static_cast<std::uint64_t>(std::round(duration / dt)));
+    const double difference = sim.particles.temperature_K[index_of(sim, 0)] - sim.particles.temperature_K[index_of(sim, 1)];
+    EXPECT_EQ(sim.contact_statistics().particle_contacts, 0u);
+    if (!conducts) {
+      EXPECT_EQ(difference, 200.0);
+      continue;
+    }
+    const double conductance = 2.0 * m.conductivity * kRadius;  // R_b = lambda_b R, lambda_b = 1, S = 1
+    const double mc = sphere_mass(m, kRadius) * m.specific_heat;
+    const double expected = 200.0 * std::exp(-2.0 * conductance * sim.time_s() / mc);
+    EXPECT_LT(expected, 150.0);  // it has relaxed measurably
+    EXPECT_NEAR(difference, expected, 0.005 * expected);
+    EXPECT_NEAR(sim.thermal_energy_J(), energy0, 1e-12 * energy0);
+  }
+}
+
+}  // namespace
+}  // namespace regodem::testing

@@ -66,6 +66,12 @@ void BondStore::remove_broken(const ParticleStore& particles) {
   rebuild_per_particle(particles.size());
 }
 
+void BondStore::remove_with_particles(const ParticleStore& particles, const std::vector<char>& removed) {
+  for (std::size_t b = 0; b < size(); ++b)
+    if (removed[local_i[b]] || removed[local_j[b]]) broken[b] = 1;
+  remove_broken(particles);
+}
+
 void BondStore::rebuild_per_particle(std::size_t particle_count) {
   // Counting sort by particle; within a particle the entries follow bond order, so
   // the gather sums in an order fixed by the bond list alone.

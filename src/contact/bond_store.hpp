@@ -60,6 +60,9 @@ class BondStore {
   void refresh_indices(const ParticleStore& particles);
   /// Removes the bonds flagged broken (keeping the order of the rest) and refreshes the CSR.
   void remove_broken(const ParticleStore& particles);
+  /// Removes the bonds with an end flagged in `removed` (by local index; the particles
+  /// are about to be removed). Call refresh_indices() after the particles went.
+  void remove_with_particles(const ParticleStore& particles, const std::vector<char>& removed);
 
  private:
   void rebuild_per_particle(std::size_t particle_count);

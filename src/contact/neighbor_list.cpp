@@ -86,8 +86,8 @@ void NeighborList::restore_history(const ParticleStore& particles, int threads) 
 }
 
 void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid,
-                           double skin_m, int threads) {
-  save_history(particles);
+                           double skin_m, int threads, bool history_saved) {
+  if (!history_saved) save_history(particles);
   const std::size_t n = particles.size();
 
   // Counting sort of the particles by cell: afterwards each cell's particles are the

@@ -57,8 +57,10 @@ class NeighborList {
   std::vector<std::uint32_t> thread_begin;
 
   /// Sorts the particles by cell, rebuilds both lists and carries the contact history.
+  /// history_saved: save_history() was called before the particles changed (removal),
+  /// so the old lists no longer index them.
   void rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid, double skin_m,
-               int threads);
+               int threads, bool history_saved = false);
 
   /// True once some particle has moved more than half the skin since the last build,
   /// or a particle and a wall may have closed the skin between them.
@@ -71,9 +73,11 @@ class NeighborList {
 
   std::size_t pair_count() const { return partner.size(); }
   std::uint64_t rebuild_count() const { return rebuilds_; }
+  /// Keeps the contact history by global id (rebuild() does it itself unless told it
+  /// was done before the particles changed).
+  void save_history(const ParticleStore& particles);
 
  private:
-  void save_history(const ParticleStore& particles);
   void restore_history(const ParticleStore& particles, int threads);
 
   std::vector<Vec3> position_at_build_m_;

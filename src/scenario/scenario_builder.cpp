@@ -604,6 +604,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
 
   SimulationSettings settings;
   settings.domain = {spec.domain.min_m, spec.domain.max_m};
+  settings.lost_particles = spec.domain.remove_lost_particles ? LostParticles::remove : LostParticles::stop;
   settings.gravity_m_per_s2 = spec.gravity_m_per_s2;
   settings.time_step_s = dt;
   settings.neighbor_skin_m = spec.neighbor_skin_m > 0.0 ? spec.neighbor_skin_m : 0.2 * min_radius;

@@ -47,7 +47,7 @@ std::optional<DomainSpec> read_domain(const YamlSection& root) {
   if (!value) return std::nullopt;
   const auto section = value->section();
   if (!section) return std::nullopt;
-  section->allow_only({"min", "max"});
+  section->allow_only({"min", "max", "lost_particles"});
   DomainSpec domain;
   domain.where = value->where();
   const auto low = section->required_vector("min", Dimension::length);
@@ -55,6 +55,11 @@ std::optional<DomainSpec> read_domain(const YamlSection& root) {
   if (!low || !high) return std::nullopt;
   domain.min_m = *low;
   domain.max_m = *high;
+  if (const auto lost = section->get("lost_particles")) {
+    const auto policy = lost->choice({"stop", "remove"});
+    if (!policy) return std::nullopt;
+    domain.remove_lost_particles = *policy == "remove";
+  }
   for (int axis = 0; axis < 3; ++axis) {
     if (!(domain.min_m[axis] < domain.max_m[axis])) {
       section->get("max")->error(fmt::format(

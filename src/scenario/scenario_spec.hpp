@@ -291,6 +291,7 @@ struct OutputSpec {
 
 struct DomainSpec {
   Vec3 min_m, max_m;
+  bool remove_lost_particles = false;  // `lost_particles: remove`; else a loss stops the run
   SourceLocation where;
 };
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <omp.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
@@ -110,7 +111,7 @@ void Simulation::refresh_contact_parameters() {
   forces_current_ = false;
 }
 
-void Simulation::rebuild_neighbors() {
+void Simulation::rebuild_neighbors(bool history_saved) {
   // The grid is sized for the current particle count: the counting sort costs one pass
   // over the cells, which must stay of the order of the particle count.
   const double max_cells = 16.0 * static_cast<double>(particles.size()) + 4096.0;
@@ -122,7 +123,7 @@ void Simulation::rebuild_neighbors() {
   // stays deterministic for a given thread setting.
   active_threads_ = static_cast<int>(std::clamp<std::size_t>(particles.size() / settings_.min_particles_per_thread, 1,
                                                              static_cast<std::size_t>(settings_.threads)));
-  neighbors_.rebuild(particles, walls, grid_, settings_.neighbor_skin_m, active_threads_);
+  neighbors_.rebuild(particles, walls, grid_, settings_.neighbor_skin_m, active_threads_, history_saved);
   walls.mark_neighbor_build();
   if (!bonds_.empty()) bonds_.refresh_indices(particles);  // the rebuild re-sorted the particles
 }
@@ -170,7 +171,11 @@ double Simulation::first_half_kick_and_drift() {
     if (!domain.contains(x[i])) escaped = 1;  // also false for NaN
     max_move2 = std::max(max_move2, norm2(x[i] - x_build[i]));
   }
-  if (escaped) report_blow_up("left the domain", time_s_ + dt, step_ + 1);  // during the drift to t + dt
+  if (escaped) {
+    if (settings_.lost_particles == LostParticles::stop) report_blow_up("left the domain", time_s_ + dt, step_ + 1);
+    remove_lost_particles();
+    return 0.0;  // the lists were just rebuilt
+  }
   return std::sqrt(max_move2);
 }
 
@@ -189,6 +194,37 @@ void Simulation::second_half_kick() {
     if (!(norm2(v[i]) * dt * dt <= limit * limit)) too_fast = 1;  // also true for NaN
   }
   if (too_fast) report_blow_up("moved more than half its radius in one step", time_s_, step_);
+}
+
+void Simulation::remove_lost_particles() {
+  const std::size_t n = particles.size();
+  std::vector<char> lost(n, 0);
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& x = particles.position_m[i];
+    const Vec3& v = particles.velocity_m_per_s[i];
+    // A non-finite state is a blow-up, never a loss.
+    if (!std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z))
+      report_blow_up("left the domain", time_s_ + settings_.time_step_s, step_ + 1);
+    if (settings_.domain.contains(x)) continue;
+    lost[i] = 1;
+    ++count;
+    // Its heat leaves with it: the ledger's reference drops as insertion raised it.
+    if (heat_enabled()) ledger_.reference_energy_J -= particle_thermal_energy_J(i);
+    spdlog::debug("particle {} left the domain at ({:.4g}, {:.4g}, {:.4g}) m at {:.3g} m/s: removed", particles.id[i],
+                  x.x, x.y, x.z, norm(v));
+  }
+  if (lost_particle_count_ == 0)
+    spdlog::warn("t = {:.6g} s: {} particle(s) left the domain and were removed (domain.lost_particles: remove); "
+                 "the time series counts them in 'particles_lost'",
+                 time_s_ + settings_.time_step_s, count);
+  lost_particle_count_ += count;
+  // Contact history is kept by global id; the bonds of a lost particle go with it
+  // (not counted as broken: nothing failed in them).
+  neighbors_.save_history(particles);
+  if (!bonds_.empty()) bonds_.remove_with_particles(particles, lost);
+  particles.remove_if(lost);
+  rebuild_neighbors(true);
 }
 
 void Simulation::report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const {

@@ -34,8 +34,15 @@ struct HeatSettings {
   double friction_partition = 0.5;  // share of sliding power to particle i (to the particle at a wall)
 };
 
+/// What happens to a particle that leaves the domain: `stop` the run with a blow-up
+/// error (a leak or an instability is a bug in the scenario), or `remove` it and go on
+/// (fragments thrown off a failing sample, cuttings flung by a drill), counting it and
+/// booking its thermal energy as lost.
+enum class LostParticles { stop, remove };
+
 struct SimulationSettings {
   Domain domain;
+  LostParticles lost_particles = LostParticles::stop;
   Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
   double time_step_s = 0.0;
   double neighbor_skin_m = 0.0;
@@ -60,7 +67,8 @@ class Simulation {
              std::vector<ThermalWall> wall_thermal = {});
 
   /// Advances one time step. Throws SimulationError on a blow-up (non-finite state,
-  /// a particle moving more than half its radius in one step) or an escape.
+  /// a particle moving more than half its radius in one step) or an escape (unless
+  /// settings.lost_particles is `remove`).
   void step();
   void advance(std::uint64_t steps);
 
@@ -76,6 +84,8 @@ class Simulation {
   const SimulationSettings& settings() const { return settings_; }
   const ContactStatistics& contact_statistics() const { return stats_; }
   const NeighborList& neighbor_list() const { return neighbors_; }
+  /// Particles removed on leaving the domain (LostParticles::remove), since the start.
+  std::uint64_t lost_particle_count() const { return lost_particle_count_; }
 
   // Measurements over all particles (each a pass over the arrays).
   double translational_kinetic_energy_J() const;
@@ -131,7 +141,10 @@ class Simulation {
 
  private:
   void ensure_forces();
-  void rebuild_neighbors();
+  /// history_saved: the contact history was already saved by id (after a removal).
+  void rebuild_neighbors(bool history_saved = false);
+  /// Removes the particles outside the domain, their bonds and contact history.
+  void remove_lost_particles();
   /// slip_time_s: dt after a step, 0 when re-evaluating an unchanged state.
   void compute_forces(double slip_time_s);
   /// Returns the largest displacement since the last neighbour build.
@@ -156,6 +169,7 @@ class Simulation {
   CellGrid grid_;
   double time_s_ = 0.0;
   std::uint64_t step_ = 0;
+  std::uint64_t lost_particle_count_ = 0;
   bool forces_current_ = false;
   int active_threads_ = 1;  // threads of the force pass, set at each neighbour build
   ContactStatistics stats_;

@@ -96,6 +96,9 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
       {"step", "-"},
       {"stage", "-"},
       {"particles", "-"},
+  };
+  if (sim.settings().lost_particles == LostParticles::remove) columns.push_back({"particles_lost", "-"});
+  columns.insert(columns.end(), {
       {"kinetic_energy", "J"},
       {"rotational_kinetic_energy", "J"},
       {"potential_energy", "J"},
@@ -104,7 +107,7 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
       {"wall_contacts", "-"},
       {"coordination_number", "-"},
       {"max_overlap_fraction", "-"},
-  };
+  });
   for (const WallBody& wall : sim.walls.bodies) {
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".force_" + axis, "N"});
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".torque_" + axis, "N m"});
@@ -138,6 +141,10 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
       static_cast<double>(sim.step_count()),
       static_cast<double>(stage_index),
       n,
+  };
+  if (sim.settings().lost_particles == LostParticles::remove)
+    row.push_back(static_cast<double>(sim.lost_particle_count()));
+  row.insert(row.end(), {
       sim.translational_kinetic_energy_J() + sim.rotational_kinetic_energy_J(),
       sim.rotational_kinetic_energy_J(),
       sim.gravitational_potential_energy_J(),
@@ -146,7 +153,7 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
       static_cast<double>(stats.wall_contacts),
       n > 0 ? (2.0 * static_cast<double>(stats.particle_contacts) + static_cast<double>(stats.wall_contacts)) / n : 0.0,
       sim.max_overlap_fraction(),
-  };
+  });
   for (const WallBody& wall : sim.walls.bodies) {
     row.insert(row.end(), {wall.force_N.x, wall.force_N.y, wall.force_N.z});
     row.insert(row.end(), {wall.torque_N_m.x, wall.torque_N_m.y, wall.torque_N_m.z});

@@ -423,6 +423,15 @@ TEST(ScenarioReader, WallOutsideTheDomain) {
                  "walls.lid", "the wall reaches outside the domain");
 }
 
+TEST(ScenarioReader, LostParticlesPolicy) {
+  EXPECT_FALSE(read_scenario_string(kValid, kFile).domain.remove_lost_particles);  // default: stop
+  const std::string remove =
+      with(kValid, "  max: [10 mm, 10 mm, 40 mm]", "  max: [10 mm, 10 mm, 40 mm]\n  lost_particles: remove");
+  EXPECT_TRUE(read_scenario_string(remove, kFile).domain.remove_lost_particles);
+  expect_problem(with(kValid, "  max: [10 mm, 10 mm, 40 mm]", "  max: [10 mm, 10 mm, 40 mm]\n  lost_particles: delete"),
+                 "  lost_particles", "domain.lost_particles", "'delete' is not one of stop or remove");
+}
+
 TEST(ScenarioReader, DomainMinMustBeBelowMax) {
   expect_problem(with(kValid, "  max: [10 mm, 10 mm, 40 mm]", "  max: [10 mm, -10 mm, 40 mm]"),
                  "  max: [10 mm, -10 mm", "domain.max", "above 'min' along every axis (y");

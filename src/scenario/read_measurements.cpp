@@ -16,6 +16,11 @@ namespace {
 const std::vector<std::string> kScheduleKeys{"interval", "every_steps", "every_depth", "at_times", "at_depths",
                                              "at_stage_end"};
 
+std::string heat_off(const ScenarioReferences& references) {
+  return references.heat_section ? "but heat is off (`heat: {enabled: false}`)"
+                                 : "but heat transfer is off: add a top-level `heat:` section (e.g. `heat: {}`)";
+}
+
 std::vector<std::string> wall_names(const ScenarioSpec& spec) {
   std::vector<std::string> names;
   for (const WallSpec& w : spec.walls) names.push_back(w.name);
@@ -306,8 +311,7 @@ std::optional<MeasurementSpec> read_band_entry(const YamlValue& item, const Scen
   MeasurementSpec out;
   out.where = item.where();
   out.measurement.kind = MeasurementKind::band;
-  if (!references.heat_enabled)
-    item.error("a band measures temperatures, but heat transfer is off: add a top-level `heat:` section");
+  if (!references.heat_enabled) item.error(fmt::format("a band measures temperatures, {}", heat_off(references)));
   const auto name = read_item_name(*section);
   const auto surface = read_surface(*section, spec);
   const auto width = read_width(*section);
@@ -419,8 +423,7 @@ void read_measurements(const YamlSection& root, const ScenarioReferences& refere
     if (const auto block = history->section()) {
       block->allow_only({"threshold"});
       if (!references.heat_enabled) {
-        history->error("the thermal history follows particle temperatures, but heat transfer is off: add a "
-                       "top-level `heat:` section");
+        history->error(fmt::format("the thermal history follows particle temperatures, {}", heat_off(references)));
       } else {
         out.thermal_history = true;
         out.thermal_history_threshold_K =

@@ -23,6 +23,7 @@
 #include "io/output_directory.hpp"
 #include "io/stl_writer.hpp"
 #include "io/summary_json_writer.hpp"
+#include "measure/thermal_history.hpp"
 #include "progress_display.hpp"
 #include "regodem/build_info.hpp"
 #include "run_recorder.hpp"
@@ -44,6 +45,8 @@ constexpr const char* summary_file = "summary.json";
 constexpr const char* scenario_copy_file = "scenario.yaml";
 constexpr const char* overrides_file = "overrides.txt";
 constexpr const char* bond_breaks_file = "bond_breaks.csv";  // only when a bond broke
+constexpr const char* regions_folder = "regions";    // measurements: regions and bands
+constexpr const char* profiles_folder = "profiles";  // measurements: profiles
 
 std::string utc_timestamp(std::chrono::system_clock::time_point when) {
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(when)));
@@ -157,6 +160,13 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   }
   const StageResult unfinished =
       ending.status == RunStatus::interrupted ? StageResult::interrupted : StageResult::failed;
+  if (const HeatSettings& h = sim.settings().heat; h.enabled && h.track_thermal_history) {
+    const ThermalHistorySummary t = thermal_history_summary(sim.particles, h.thermal_history_threshold_K);
+    summary.thermal_history = ThermalHistoryFinal{h.thermal_history_threshold_K, t.particles, t.crossed,
+                                                  t.crossed_fraction(), t.peak_temperature_max_K,
+                                                  t.time_above_threshold_mean_s, t.time_above_threshold_max_s};
+  }
+  summary.measurements = recorder.measurement_finals();
   summary.stages = recorder.stage_summaries(outcome.simulated_time_s, unfinished);
   summary.notices = recorder.notices();
   return summary;
@@ -212,7 +222,9 @@ int run_scenario(const RunOptions& options) {
                                      SnapshotSeries::particles_collection,
                                      SnapshotSeries::walls_collection,
                                      SnapshotSeries::data_folder,
-                                     bond_breaks_file};
+                                     bond_breaks_file,
+                                     regions_folder,
+                                     profiles_folder};
     for (const std::string& mesh_file : generated_mesh_files(*spec)) outputs.push_back(mesh_file);
     prepare_output_directory(directory, options.overwrite, outputs);
   } catch (const InputError& error) {
@@ -232,6 +244,7 @@ int run_scenario(const RunOptions& options) {
     recorder.write_snapshots_with(&*snapshots);
   }
   recorder.set_bond_breaks_path(directory / bond_breaks_file);
+  recorder.set_measurements_directory(directory);
 
   const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   const auto wall_start = std::chrono::steady_clock::now();

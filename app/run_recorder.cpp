@@ -61,6 +61,24 @@ void RunRecorder::bonds_broken(const std::vector<BondBreakEvent>& events) {
                                                 e.shear_stress_Pa});
 }
 
+void RunRecorder::measurement_tables(const std::vector<MeasurementTable>& tables) {
+  if (measurements_directory_.empty()) return;
+  for (const MeasurementTable& table : tables) {
+    const std::filesystem::path relative = std::filesystem::path(table.folder) / (table.name + ".csv");
+    std::filesystem::create_directories(measurements_directory_ / table.folder);
+    measurement_writers_.push_back(std::make_unique<CsvTimeSeriesWriter>(measurements_directory_ / relative, table.columns));
+    measurement_finals_.push_back({table, relative.generic_string(), 0, {}});
+  }
+}
+
+void RunRecorder::measurement_rows(std::size_t table, const std::vector<std::vector<double>>& rows) {
+  if (table >= measurement_writers_.size()) return;
+  for (const std::vector<double>& row : rows) measurement_writers_[table]->write_row(row);
+  MeasurementFinal& final_values = measurement_finals_[table];
+  ++final_values.samples;
+  final_values.last_rows = rows;
+}
+
 void RunRecorder::notice(const std::string& message) {
   notices_.push_back(message);
   display_.notice(message);

@@ -33,6 +33,12 @@ class RunRecorder final : public RunObserver {
   /// Appends the events to the breakage CSV, created at the first broken bond.
   void bonds_broken(const std::vector<BondBreakEvent>& events) override;
   void set_bond_breaks_path(std::filesystem::path path) { bond_breaks_path_ = std::move(path); }
+  /// Creates DIRECTORY/FOLDER/NAME.csv for each table (regions, bands, profiles).
+  void measurement_tables(const std::vector<MeasurementTable>& tables) override;
+  void measurement_rows(std::size_t table, const std::vector<std::vector<double>>& rows) override;
+  void set_measurements_directory(std::filesystem::path directory) { measurements_directory_ = std::move(directory); }
+  /// Each table with its file and its last sample, for summary.json.
+  const std::vector<MeasurementFinal>& measurement_finals() const { return measurement_finals_; }
 
   /// Stage records. The last stage started ends at `final_time_s` (the run's simulated
   /// time when it returned) and, if it never reported its end (the run threw), gets
@@ -57,6 +63,9 @@ class RunRecorder final : public RunObserver {
   SimulationSnapshotWriter* snapshots_ = nullptr;
   std::filesystem::path bond_breaks_path_;
   std::unique_ptr<CsvTimeSeriesWriter> bond_breaks_;
+  std::filesystem::path measurements_directory_;
+  std::vector<std::unique_ptr<CsvTimeSeriesWriter>> measurement_writers_;
+  std::vector<MeasurementFinal> measurement_finals_;
   std::vector<StageSummary> stages_;
   std::optional<StageInfo> current_stage_;
   std::optional<ProgressSnapshot> last_snapshot_;

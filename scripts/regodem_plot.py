@@ -6,7 +6,8 @@
                     [--section-thickness M]
 
 Reads each run's time_series.csv (header "name [unit]") and any other CSV with such a
-header in the run's folder (profiles and region series), and writes figures of
+header in the run's folder and in regions/ (region and band series), each profile in
+profiles/ as one line per instant, and writes figures of
 FIG_WIDTH x FIG_HEIGHT pixels into DIR (default: the first OUTDIR's plots/ folder).
 Several runs are overlaid, one colour per run, labelled by --labels or their folder
 names. A figure whose columns no run has is left out, and the message says so.
@@ -103,12 +104,22 @@ class Run:
                     self.others[name] = Series(os.path.join(directory, name))
                 except (BadInput, OSError, csv.Error) as error:
                     print(f"regodem plot: skipping {os.path.join(directory, name)}: {error}", file=sys.stderr)
-        for sub in ("profiles", "regions"):  # folders later versions write CSVs into
+        self.profiles = {}  # profiles/NAME.csv: long form, one row per bin and instant
+        for sub in ("profiles", "regions"):  # the measurements' CSV files
             folder = os.path.join(directory, sub)
             if os.path.isdir(folder):
                 for name in sorted(os.listdir(folder)):
                     if name.endswith(".csv"):
-                        self.others[f"{sub}/{name}"] = Series(os.path.join(folder, name))
+                        series = Series(os.path.join(folder, name))
+                        if sub == "profiles" and is_profile(series):
+                            self.profiles[name[: -len(".csv")]] = series
+                        else:
+                            self.others[f"{sub}/{name}"] = series
+
+
+def is_profile(series):
+    """A profile as RegoDEM writes it: time, [depth,] distance or radius, temperatures, count."""
+    return series.has("time") and (series.has("distance") or series.has("radius")) and series.has("count")
 
 
 # ---------------------------------------------------------------------------------
@@ -312,6 +323,42 @@ def plot_other_csvs(runs, out_dir, written):
         save(fig, out_dir, re.sub(r"[^A-Za-z0-9_.-]", "_", name[: -len(".csv")]) + ".png", written)
 
 
+def plot_profiles(runs, out_dir, written):
+    """Each profile: mean temperature (count without heat) against distance or radius, one
+    line per instant, labelled by its depth where it has one (Fig. 13a), else its time."""
+    names = sorted({name for run in runs for name in run.profiles})
+    for name in names:
+        fig, (ax,) = new_figure()
+        any_line = False
+        styles = ["-", "--", ":", "-."]
+        for run, colour in zip(runs, colours(len(runs))):
+            s = run.profiles.get(name)
+            if s is None or not len(s.data):
+                continue
+            x = "radius" if s.has("radius") else "distance"
+            y = "temperature_mean" if s.has("temperature_mean") else "count"
+            key = "depth" if s.has("depth") else "time"
+            instants = list(dict.fromkeys(s.column("time")))
+            for k, t in enumerate(instants):
+                rows = s.column("time") == t
+                tag = f"{key} {s.column(key)[rows][0]:.4g} {s.units[key]}"
+                ax.plot(s.column(x)[rows], s.column(y)[rows], marker=".",
+                        color=colour if len(runs) > 1 else None,
+                        linestyle=styles[k % len(styles)] if len(runs) > 1 else "-",
+                        label=f"{run.label}: {tag}" if len(runs) > 1 else tag)
+                any_line = True
+            ax.set_xlabel(s.label(x))
+            ax.set_ylabel(s.label(y))
+        if not any_line:
+            plt.close(fig)
+            continue
+        ax.set_title(f"profile {name}")
+        ax.legend(fontsize="x-small", ncol=2)
+        ax.grid(alpha=0.3)
+        fig.tight_layout()
+        save(fig, out_dir, "profiles_" + re.sub(r"[^A-Za-z0-9_.-]", "_", name) + ".png", written)
+
+
 # ---------------------------------------------------------------------------------
 # Snapshots (the .vtp files RegoDEM writes: raw appended data, optionally zlib)
 
@@ -495,7 +542,7 @@ def main(argv):
             if len(labels) != len(args.runs):
                 raise BadInput(f"--labels gives {len(labels)} labels for {len(args.runs)} runs")
         runs = [Run(d, l) for d, l in zip(args.runs, labels)]
-        if not any(r.series is not None or r.others for r in runs) and not args.section:
+        if not any(r.series is not None or r.others or r.profiles for r in runs) and not args.section:
             raise BadInput("no time_series.csv or other CSV in " + ", ".join(f"'{r}'" for r in args.runs))
         out_dir = args.out or os.path.join(args.runs[0], "plots")
         os.makedirs(out_dir, exist_ok=True)
@@ -506,6 +553,7 @@ def main(argv):
             if reason:
                 missing.append(reason)
         plot_other_csvs(runs, out_dir, written)
+        plot_profiles(runs, out_dir, written)
         if args.section:
             for run in runs:
                 name = "section.png" if len(runs) == 1 else f"section_{re.sub(r'[^A-Za-z0-9_.-]', '_', run.label)}.png"

@@ -23,6 +23,8 @@ std::size_t ParticleStore::add(const NewParticle& p) {
   temperature_K.push_back(p.temperature_K);
   heat_flow_W.push_back(0.0);
   conductivity_W_per_mK.push_back(0.0);  // set by the simulation from the material
+  peak_temperature_K.push_back(p.temperature_K);
+  time_above_threshold_s.push_back(0.0);
   return id.size() - 1;
 }
 

@@ -44,6 +44,11 @@ class ParticleStore {
   std::vector<double> temperature_K;
   std::vector<double> heat_flow_W;            // net heat into the particle, summed in the contact pass
   std::vector<double> conductivity_W_per_mK;  // k at the particle's temperature
+  // Thermal history (measure/thermal_history.hpp), kept while the run tracks it: the
+  // highest temperature reached (from the inserted one) and the time spent above the
+  // threshold.
+  std::vector<double> peak_temperature_K;
+  std::vector<double> time_above_threshold_s;
 
   /// Calls f(vector&) for every per-particle field: the one list of fields.
   template <class F>
@@ -51,6 +56,7 @@ class ParticleStore {
     f(id); f(radius_m); f(mass_kg); f(inv_mass_per_kg); f(inv_inertia);
     f(position_m); f(velocity_m_per_s); f(angular_velocity_rad_per_s); f(force_N); f(torque_N_m);
     f(material); f(region); f(temperature_K); f(heat_flow_W); f(conductivity_W_per_mK);
+    f(peak_temperature_K); f(time_above_threshold_s);
   }
 
   std::size_t size() const { return id.size(); }

@@ -29,6 +29,8 @@ void check_particle_lengths(const ParticleSnapshot& s) {
   check(s.region.size(), "region", false);
   check(s.contacts.size(), "contacts", false);
   check(s.temperature_K.size(), "temperature", true);
+  check(s.peak_temperature_K.size(), "peak_temperature", true);
+  check(s.time_above_threshold_s.size(), "time_above_threshold", true);
   check(s.intact_bonds.size(), "intact_bonds", true);
 }
 
@@ -45,6 +47,8 @@ VtpDocument particle_document(const ParticleSnapshot& s, const VtpOptions& optio
   document.add_point_data("id", s.id);
   document.add_point_data("radius", s.radius_m);
   if (!s.temperature_K.empty()) document.add_point_data("temperature", s.temperature_K);
+  if (!s.peak_temperature_K.empty()) document.add_point_data("peak_temperature", s.peak_temperature_K);
+  if (!s.time_above_threshold_s.empty()) document.add_point_data("time_above_threshold", s.time_above_threshold_s);
   document.add_point_data("velocity", s.velocity_m_per_s);
   document.add_point_data("angular_velocity", s.angular_velocity_rad_per_s);
   document.add_point_data("material", s.material);

@@ -33,6 +33,8 @@ struct ParticleSnapshot {
   std::span<const std::uint32_t> contacts;      // touching particles and walls
   // Optional fields, written only when given (non-empty): no field of placeholders.
   std::span<const double> temperature_K;        // heat on
+  std::span<const double> peak_temperature_K;   // the run tracks the thermal history
+  std::span<const double> time_above_threshold_s;  // the same
   std::span<const std::uint16_t> intact_bonds;  // the simulation has bonds
   std::vector<std::string> material_names;      // index = material
   std::vector<std::string> region_names;        // index = region tag

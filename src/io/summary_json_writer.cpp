@@ -25,6 +25,61 @@ nlohmann::ordered_json stage_to_json(const StageSummary& stage) {
   return json;
 }
 
+/// "temperature_mean" in K -> "temperature_mean_K"; a count ("-") keeps its name.
+std::string key_with_unit(const SeriesColumn& column) {
+  return column.unit.empty() || column.unit == "-" ? column.name : column.name + "_" + column.unit;
+}
+
+/// Counts as whole numbers, the rest as numbers (null for NaN: an empty region).
+nlohmann::ordered_json value_to_json(const SeriesColumn& column, double value) {
+  if (column.name.starts_with("count") && std::isfinite(value)) return static_cast<std::int64_t>(value);
+  return number_or_null(value);
+}
+
+/// A region or band: its last row by column. A profile: time (and depth) once, each
+/// other column as an array over the bins.
+nlohmann::ordered_json measurement_to_json(const MeasurementFinal& m) {
+  nlohmann::ordered_json json;
+  json["file"] = m.file;
+  json["samples"] = m.samples;
+  nlohmann::ordered_json last = nullptr;
+  if (!m.last_rows.empty()) {
+    last = nlohmann::ordered_json::object();
+    const bool profile = m.table.kind == "profile";
+    for (std::size_t c = 0; c < m.table.columns.size(); ++c) {
+      const SeriesColumn& column = m.table.columns[c];
+      if (!profile || column.name == "time" || column.name == "depth") {
+        last[key_with_unit(column)] = value_to_json(column, m.last_rows.front()[c]);
+        continue;
+      }
+      nlohmann::ordered_json values = nlohmann::ordered_json::array();
+      for (const std::vector<double>& row : m.last_rows) values.push_back(value_to_json(column, row[c]));
+      last[key_with_unit(column)] = std::move(values);
+    }
+  }
+  json["final"] = std::move(last);
+  return json;
+}
+
+nlohmann::ordered_json measurements_to_json(const RunSummary& summary) {
+  nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  if (const auto& h = summary.thermal_history)
+    json["thermal_history"] = {{"threshold_K", number_or_null(h->threshold_K)},
+                               {"particles", h->particles},
+                               {"crossed", h->crossed},
+                               {"crossed_fraction", number_or_null(h->crossed_fraction)},
+                               {"peak_temperature_max_K", number_or_null(h->peak_temperature_max_K)},
+                               {"time_above_threshold_mean_s", number_or_null(h->time_above_threshold_mean_s)},
+                               {"time_above_threshold_max_s", number_or_null(h->time_above_threshold_max_s)}};
+  for (const char* kind : {"region", "band", "profile"}) {
+    nlohmann::ordered_json group = nlohmann::ordered_json::object();
+    for (const MeasurementFinal& m : summary.measurements)
+      if (m.table.kind == kind) group[m.table.name] = measurement_to_json(m);
+    if (!group.empty()) json[std::string(kind) + "s"] = std::move(group);
+  }
+  return json;
+}
+
 }  // namespace
 
 std::string_view to_string(RunStatus status) {
@@ -75,6 +130,7 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
                      {"broken", summary.bonds->broken_in_tension + summary.bonds->broken_in_shear},
                      {"broken_in_tension", summary.bonds->broken_in_tension},
                      {"broken_in_shear", summary.bonds->broken_in_shear}};
+  if (summary.thermal_history || !summary.measurements.empty()) json["measurements"] = measurements_to_json(summary);
   json["stages"] = nlohmann::ordered_json::array();
   for (const StageSummary& stage : summary.stages) json["stages"].push_back(stage_to_json(stage));
   json["notices"] = summary.notices;

@@ -45,6 +45,23 @@ struct BondSummary {
   std::uint64_t formed = 0, intact = 0, broken_in_tension = 0, broken_in_shear = 0;
 };
 
+/// The per-particle thermal history at the end of the run (measurements.thermal_history).
+struct ThermalHistoryFinal {
+  double threshold_K = 0.0;
+  std::size_t particles = 0, crossed = 0;
+  double crossed_fraction = 0.0;
+  double peak_temperature_max_K = 0.0;
+  double time_above_threshold_mean_s = 0.0, time_above_threshold_max_s = 0.0;
+};
+
+/// A measurement's table and its last sample (one row; one per bin for a profile).
+struct MeasurementFinal {
+  MeasurementTable table;
+  std::string file;  // relative to the output directory
+  std::size_t samples = 0;
+  std::vector<std::vector<double>> last_rows;
+};
+
 struct RunSummary {
   RunStatus status = RunStatus::failed;
   std::string message;
@@ -66,6 +83,8 @@ struct RunSummary {
   std::vector<std::string> overrides;  // --set key.path=value, in the order applied
   HeatSummary heat;
   std::optional<BondSummary> bonds;
+  std::optional<ThermalHistoryFinal> thermal_history;
+  std::vector<MeasurementFinal> measurements;
   std::vector<StageSummary> stages;
   std::vector<std::string> notices;  // what the run told the user (a full insertion region...)
 };

@@ -139,6 +139,43 @@ int fed_wall_index(const WallSet& walls, const std::string& name, const SourceLo
   return static_cast<int>(named - walls.bodies.begin());
 }
 
+/// The body of a wall named in the scenario (a sieve's: its first segment; they move as one).
+int wall_body_index(const WallSet& walls, const std::string& name, const SourceLocation& where) {
+  for (std::size_t b = 0; b < walls.bodies.size(); ++b)
+    if (walls.bodies[b].name == name || walls.bodies[b].name == name + "[1]") return static_cast<int>(b);
+  fail(where, fmt::format("no wall named '{}'", name));
+}
+
+/// The plan's measurements with their walls resolved to bodies.
+MeasurementPlan measurement_plan(const MeasurementsSpec& spec, const WallSet& walls, std::vector<std::string>& lines) {
+  MeasurementPlan plan;
+  for (const MeasurementSpec& in : spec.items) {
+    Measurement m = in.measurement;
+    if (!in.moves_with.empty()) m.follow_body = wall_body_index(walls, in.moves_with, in.where);
+    const std::string who = fmt::format("measurement '{}'", m.name);
+    if (!in.depth_wall.empty()) {
+      m.depth_body = fed_wall_index(walls, in.depth_wall, in.where, who);
+      m.schedule.periodic.depth_body = m.depth_body;
+    } else if (m.follow_body >= 0 && norm2(walls.bodies[static_cast<std::size_t>(m.follow_body)].motion.velocity_m_per_s) > 0.0) {
+      m.depth_body = m.follow_body;  // a region riding on a drill: its depth is worth a column
+    }
+    const char* kind = m.kind == MeasurementKind::region ? "region" : m.kind == MeasurementKind::band ? "band" : "profile";
+    const MeasurementSchedule& s = m.schedule;
+    const SnapshotSchedule& p = s.periodic;
+    const std::string when =
+        p.trigger == SnapshotSchedule::Trigger::time    ? fmt::format("every {:.4g} s", p.interval_s)
+        : p.trigger == SnapshotSchedule::Trigger::steps ? fmt::format("every {} steps", p.every_steps)
+        : p.trigger == SnapshotSchedule::Trigger::depth ? fmt::format("every {:.4g} m of wall '{}''s depth", p.depth_interval_m, in.depth_wall)
+        : !s.at_times_s.empty()                         ? fmt::format("at {} times", s.at_times_s.size())
+        : !s.at_depths_m.empty()                        ? fmt::format("at {} depths of wall '{}'", s.at_depths_m.size(), in.depth_wall)
+                                                        : std::string("with the time series");
+    lines.push_back(fmt::format("measurement '{}': {}, {}{}", m.name, kind, when,
+                                in.moves_with.empty() ? "" : fmt::format(", moving with wall '{}'", in.moves_with)));
+    plan.items.push_back(std::move(m));
+  }
+  return plan;
+}
+
 bool parallel(const Vec3& a, const Vec3& b) { return norm(cross(normalized(a), normalized(b))) < 1e-9; }
 
 WallMotion wall_motion(const WallSpec& w) {
@@ -614,6 +651,8 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   settings.heat.time_scale_factor = spec.heat.time_scale_factor;
   settings.heat.friction_heating = spec.heat.friction_heating;
   settings.heat.friction_partition = spec.heat.friction_partition;
+  settings.heat.track_thermal_history = spec.heat.enabled && spec.measurements.thermal_history;
+  settings.heat.thermal_history_threshold_K = spec.measurements.thermal_history_threshold_K;
   impl.simulation =
       std::make_unique<Simulation>(std::move(materials), std::move(walls), settings, std::move(wall_thermal));
   configure_bonds(spec, *impl.simulation, lines);
@@ -688,6 +727,10 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                         : fmt::format("snapshots (ParaView) every {:.4g} s of simulated time{}", snap.interval_s,
                                       snap.at_stage_end ? " and at the end of each stage" : ""));
   }
+  if (spec.measurements.thermal_history && spec.heat.enabled)
+    lines.push_back(fmt::format("thermal history: peak temperature and time above {:.5g} K of every particle",
+                                spec.measurements.thermal_history_threshold_K));
+  impl.plan.measurements = measurement_plan(spec.measurements, impl.simulation->walls, lines);
   impl.plan.seed = spec.seed;
   return run;
 }

@@ -26,7 +26,7 @@ const std::vector<std::string> kTopLevelKeys{
     "time_step",     "rayleigh_fraction",     "max_rayleigh_fraction",
     "neighbor_skin", "materials",   "interactions",         "walls",
     "insertions",    "stages",      "output",               "heat",
-    "bonds"};
+    "bonds",         "measurements"};
 
 /// `auto` (returned as 0, the builder's cue to choose) or a quantity greater than 0.
 double read_auto_or_positive(const YamlSection& root, std::string_view key, Dimension dimension) {
@@ -137,6 +137,7 @@ ScenarioSpec read_tree(const YAML::Node& tree, ScenarioReadContext& context) {
   read_walls(*root, references, spec);
   read_insertions(*root, references, spec);
   read_output(*root, spec);
+  read_measurements(*root, references, spec);
   check_heat_requirements(spec, references, context.diagnostics);
   return spec;
 }

@@ -49,5 +49,8 @@ std::optional<BondFormationSpec> read_bond_formation(const YamlValue& value,
                                                      const ScenarioReferences& references);  // read_bonds.cpp
 void read_insertions(const YamlSection& root, const ScenarioReferences& references,
                      ScenarioSpec& spec);                                           // read_insertions.cpp
+/// The `measurements` section; after the walls, which it names.
+void read_measurements(const YamlSection& root, const ScenarioReferences& references,
+                       ScenarioSpec& spec);                                         // read_measurements.cpp
 
 }  // namespace regodem

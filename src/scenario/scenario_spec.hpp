@@ -15,6 +15,7 @@
 #include "core/vec3.hpp"
 #include "geometry/auger_generator.hpp"
 #include "geometry/triangle_mesh.hpp"
+#include "sim/measurement_plan.hpp"
 
 namespace regodem {
 
@@ -289,6 +290,23 @@ struct OutputSpec {
   SnapshotSpec snapshots;
 };
 
+/// One entry of the `measurements` section: a region, band or profile with its schedule,
+/// in SI units; the walls it names are resolved to bodies by the builder.
+struct MeasurementSpec {
+  Measurement measurement;  // follow_body, depth_body and the schedule's depth_body unset
+  std::string moves_with;   // wall name; empty: fixed
+  std::string depth_wall;   // the schedule's wall (every_depth, at_depths); empty: none
+  SourceLocation where;
+};
+
+/// The `measurements` section.
+struct MeasurementsSpec {
+  bool thermal_history = false;  // per-particle peak temperature and time above the threshold
+  double thermal_history_threshold_K = 203.15;  // -70 degC
+  std::vector<MeasurementSpec> items;
+  SourceLocation where;
+};
+
 struct DomainSpec {
   Vec3 min_m, max_m;
   bool remove_lost_particles = false;  // `lost_particles: remove`; else a loss stops the run
@@ -315,6 +333,7 @@ struct ScenarioSpec {
   std::vector<BondSpec> bonds;
   HeatSpec heat;
   OutputSpec output;
+  MeasurementsSpec measurements;
 };
 
 }  // namespace regodem

@@ -45,6 +45,14 @@ struct SeriesColumn {
   std::string unit;  // "-" for dimensionless counts
 };
 
+/// A measurement's table (the scenario's `measurements`): written to FOLDER/NAME.csv.
+struct MeasurementTable {
+  std::string name;
+  std::string kind;    // "region", "band" or "profile"
+  std::string folder;  // "regions" (regions and bands) or "profiles"
+  std::vector<SeriesColumn> columns;
+};
+
 enum class StageResult { finished, failed, interrupted };
 
 class RunObserver {
@@ -66,6 +74,11 @@ class RunObserver {
                               const std::string& /*message*/) {}
   /// Bonds that broke in the last step, in the order they broke.
   virtual void bonds_broken(const std::vector<BondBreakEvent>& /*events*/) {}
+  /// Called once before the first stage with the measurements' tables (none: not called).
+  virtual void measurement_tables(const std::vector<MeasurementTable>& /*tables*/) {}
+  /// Rows of table `table` taken at one instant: one for a region or band, one per bin
+  /// for a profile; values in the order of its columns.
+  virtual void measurement_rows(std::size_t /*table*/, const std::vector<std::vector<double>>& /*rows*/) {}
 };
 
 struct RunOutcome {

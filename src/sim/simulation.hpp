@@ -32,6 +32,10 @@ struct HeatSettings {
   double time_scale_factor = 1.0;  // S: every conductance x S, for compressed mechanical time
   bool friction_heating = false;
   double friction_partition = 0.5;  // share of sliding power to particle i (to the particle at a wall)
+  // Per-particle peak temperature and time above the threshold (measure/thermal_history.hpp),
+  // recorded in the temperature update when on.
+  bool track_thermal_history = false;
+  double thermal_history_threshold_K = 203.15;  // -70 degC
 };
 
 /// What happens to a particle that leaves the domain: `stop` the run with a blow-up

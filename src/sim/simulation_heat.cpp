@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "measure/thermal_history.hpp"
 #include "sim/simulation.hpp"
 #include "thermal/static_bed_solver.hpp"
 
@@ -54,10 +55,17 @@ void Simulation::update_temperatures(double dt_s) {
   const double* __restrict heat = particles.heat_flow_W.data();
   const double* __restrict mass = particles.mass_kg.data();
   const MaterialIndex* __restrict material = particles.material.data();
+  // The thermal history rides on this pass (the temperatures are in cache here): two
+  // more arrays streamed, and only when a scenario asks for it.
+  const bool track = settings_.heat.track_thermal_history;
+  const double threshold_K = settings_.heat.thermal_history_threshold_K;
+  double* __restrict peak = particles.peak_temperature_K.data();
+  double* __restrict time_above = particles.time_above_threshold_s.data();
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048)
   for (std::size_t i = 0; i < n; ++i) {
     const MaterialIndex m = material[i];
     const double energy_per_mass = heat[i] * dt_s / mass[i];
+    const double old_K = temperature[i];
     if (inv_specific_heat[m] > 0.0) {
       temperature[i] += energy_per_mass * inv_specific_heat[m];
     } else {
@@ -65,6 +73,7 @@ void Simulation::update_temperatures(double dt_s) {
       temperature[i] = c.inverse_integral(c.integral_from_zero(temperature[i]) + energy_per_mass);
     }
     if (conductivity_varies[m]) conductivity[i] = materials[m].conductivity_W_per_mK.at(temperature[i]);
+    if (track) record_thermal_history(old_K, temperature[i], dt_s, threshold_K, peak[i], time_above[i]);
   }
 
   for (std::size_t b = 0; b < wall_thermal.size(); ++b) {

@@ -62,6 +62,10 @@ ParticleSnapshot SimulationSnapshotWriter::particle_snapshot(const Simulation& s
   s.region = p.region;
   s.contacts = contacts_;
   if (sim.heat_enabled()) s.temperature_K = p.temperature_K;
+  if (sim.heat_enabled() && sim.settings().heat.track_thermal_history) {
+    s.peak_temperature_K = p.peak_temperature_K;
+    s.time_above_threshold_s = p.time_above_threshold_s;
+  }
   // Intact bonds per particle, from the bond store's per-particle index (current after
   // every bond pass); the field is written only for a run with bonds.
   if (sim.bonds_configured()) {

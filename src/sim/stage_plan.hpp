@@ -10,6 +10,7 @@
 
 #include "core/particle_store.hpp"
 #include "sim/insertion.hpp"
+#include "sim/measurement_plan.hpp"
 #include "sim/snapshot_schedule.hpp"
 
 namespace regodem {
@@ -63,6 +64,7 @@ struct StagePlan {
   std::vector<Insertion> insertions;
   double sample_interval_s = 0.0;   // 0: 100 samples per time-limited stage
   SnapshotSchedule snapshots;       // ParaView snapshots; none by default
+  MeasurementPlan measurements;     // regions, bands, profiles; none by default
   std::vector<std::string> region_names;  // insertion region tags, index = RegionTag
   std::uint64_t seed = 1;
 };

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "sim/measurement_runner.hpp"
 #include "sim/static_heat_stepper.hpp"
 
 namespace regodem {
@@ -124,6 +125,8 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
                                  {"boundary_heat_in", "J"},
                                  {"friction_heat", "J"},
                                  {"energy_imbalance", "-"}});
+  const std::vector<SeriesColumn> history = thermal_history_columns(sim);
+  columns.insert(columns.end(), history.begin(), history.end());
   for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b)
     if (conducting_wall(sim.wall_thermal[b])) {
       columns.push_back({sim.walls.bodies[b].name + ".temperature", "K"});
@@ -177,6 +180,8 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
   row.insert(row.end(), {n > 0 ? sum / n : std::numeric_limits<double>::quiet_NaN(), lowest, highest, energy,
                          ledger.boundary_heat_in_J, ledger.friction_heat_J,
                          energy != 0.0 ? imbalance / std::abs(energy) : 0.0});
+  const std::vector<double> history = thermal_history_row(sim);
+  row.insert(row.end(), history.begin(), history.end());
   for (const ThermalWall& w : sim.wall_thermal)
     if (conducting_wall(w))
       row.insert(row.end(), {w.temperature_K, w.heat_flow_to_particles_W, w.heat_to_particles_J});
@@ -192,6 +197,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
   double particle_steps = 0.0;
   Rng rng(plan.seed);
   observer.columns(time_series_columns(sim));
+  MeasurementRunner measurements(plan.measurements);
+  measurements.announce(sim, observer);
   const double dt = sim.time_step_s();
   SnapshotClock snapshots(plan.snapshots);
   const auto snapshot_depth_m = [&] {
@@ -281,6 +288,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     double last_sampled_time_s = std::numeric_limits<double>::quiet_NaN();
     auto sample = [&] {
       observer.sample(time_series_row(sim, s));
+      measurements.with_time_series(sim, observer);
       last_sampled_time_s = sim.time_s();
       while (next_sample_s <= sim.time_s() + 0.5 * step_s) next_sample_s += sample_interval;
     };
@@ -304,6 +312,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           if (!frozen) check_coupled_heat_step(sim);  // the contacts have changed since the last check
         }
         if (snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m())) take_snapshot(0.5 * step_s);
+        if (!measurements.empty()) measurements.before_step(sim, 0.5 * step_s, observer);
 
         if (ends_by_time && done >= planned_steps) break;
         if (stage.ends_at_depth() && reached_depth(sim, stage)) break;
@@ -367,6 +376,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         }
         ++done;
         snapshots.count_step();
+        measurements.count_step();
         particle_steps += static_cast<double>(sim.particles.size());
       }
     } catch (const SimulationError& e) {
@@ -382,6 +392,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     }
     // The state a stage ends in, also a failed or interrupted one (it shows what went wrong).
     if (snapshots.due_at_stage_end(sim.time_s())) take_snapshot(0.0);
+    measurements.at_stage_end(sim, observer);
     sim.materials = original_pairs;
     sim.refresh_contact_parameters();
     info.end_time_s = sim.time_s();

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "measure/thermal_history.hpp"
 #include "sim/simulation.hpp"
 
 namespace regodem {
@@ -71,6 +72,12 @@ void StaticHeatStepper::advance(double dt_s) {
   }
   const StaticStepReport report = solver_.step(dt_s, node_temperature_K_, boundary_start_K_, boundary_end_K_);
 
+  if (const HeatSettings& heat = sim_.settings().heat; heat.track_thermal_history) {
+    ParticleStore& p = sim_.particles;
+    for (std::size_t i = 0; i < n; ++i)
+      record_thermal_history(p.temperature_K[i], node_temperature_K_[i], dt_s, heat.thermal_history_threshold_K,
+                             p.peak_temperature_K[i], p.time_above_threshold_s[i]);
+  }
   std::copy(node_temperature_K_.begin(), node_temperature_K_.begin() + static_cast<std::ptrdiff_t>(n),
             sim_.particles.temperature_K.begin());
   boundary_heat_by_body_J_.assign(n_bodies, 0.0);

@@ -128,6 +128,23 @@ TEST_F(PlotCommand, PlotsFurtherCsvFilesAsProfiles) {
   EXPECT_EQ(size.width, kFigureWidth);
 }
 
+TEST_F(PlotCommand, DrawsAProfileAsOneLinePerInstant) {
+  // profiles/NAME.csv as `measurements.profiles` writes it: long form, two instants.
+  const fs::path run_dir = root_ / "sieve";
+  fs::create_directories(run_dir / "profiles");
+  {
+    std::ofstream csv(run_dir / "profiles" / "radial.csv");
+    csv << "time [s],depth [m],radius [m],temperature_mean [K],temperature_min [K],temperature_max [K],count [-]\n"
+           "1,0.075,0.0005,250,240,260,3\n1,0.075,0.0015,230,220,240,4\n"
+           "2,0.1,0.0005,270,260,280,3\n2,0.1,0.0015,nan,nan,nan,0\n";
+  }
+  const fs::path out = root_ / "profile_plots";
+  const Result r = run("plot '" + run_dir.string() + "' --out '" + out.string() + "'");
+  fs::remove_all(run_dir / "profiles");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(png_size(out / "profiles_radial.png").valid) << r.output;
+}
+
 TEST_F(PlotCommand, RefusesBadArgumentsWithExitStatusTwo) {
   const std::string sieve = "'" + (root_ / "sieve").string() + "'";
   Result r = run("plot '" + (root_ / "missing").string() + "'");

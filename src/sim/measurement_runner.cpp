@@ -1,0 +1,161 @@
+#include "sim/measurement_runner.hpp"
+
+#include <limits>
+#include <optional>
+
+#include "measure/thermal_history.hpp"
+#include "sim/simulation.hpp"
+
+namespace regodem {
+namespace {
+
+Vec3 offset_of(const Simulation& sim, const Measurement& m) {
+  return m.follow_body >= 0 ? sim.walls.bodies[static_cast<std::size_t>(m.follow_body)].displacement_m : Vec3{};
+}
+
+std::optional<double> threshold_of(const Simulation& sim) {
+  const HeatSettings& heat = sim.settings().heat;
+  if (!heat.enabled || !heat.track_thermal_history) return std::nullopt;
+  return heat.thermal_history_threshold_K;
+}
+
+void add_temperatures(std::vector<double>& row, const TemperatureStatistics& s) {
+  row.insert(row.end(), {s.mean_K, s.min_K, s.max_K});
+}
+
+}  // namespace
+
+MeasurementTable measurement_table(const Measurement& m, const Simulation& sim) {
+  MeasurementTable table;
+  table.name = m.name;
+  table.kind = m.kind == MeasurementKind::region ? "region" : m.kind == MeasurementKind::band ? "band" : "profile";
+  table.folder = m.kind == MeasurementKind::profile ? "profiles" : "regions";
+  std::vector<SeriesColumn>& c = table.columns;
+  const bool heat = sim.heat_enabled();
+  const bool depth = m.depth_body >= 0;
+  const std::vector<SeriesColumn> temperatures{
+      {"temperature_mean", "K"}, {"temperature_min", "K"}, {"temperature_max", "K"}};
+  switch (m.kind) {
+    case MeasurementKind::region:
+      // Against depth first where there is one: the paper's Fig. 14 plots the chip zone so.
+      if (depth) c.push_back({"depth", "m"});
+      c.push_back({"time", "s"});
+      if (heat) c.insert(c.end(), temperatures.begin(), temperatures.end());
+      c.push_back({"count", "-"});
+      if (threshold_of(sim)) c.push_back({"crossed_threshold_fraction", "-"});
+      break;
+    case MeasurementKind::band:
+      if (depth) c.push_back({"depth", "m"});
+      c.insert(c.end(), {{"time", "s"}, {"T_in", "K"}, {"T_out", "K"}, {"T_d", "K"}, {"count_in", "-"},
+                         {"count_out", "-"}});
+      break;
+    case MeasurementKind::profile:
+      // Long form, one row per bin and instant: rows of one instant share their time.
+      c.push_back({"time", "s"});
+      if (depth) c.push_back({"depth", "m"});
+      c.push_back({m.profile.coordinate == ProfileCoordinate::radius ? "radius" : "distance", "m"});
+      if (heat) c.insert(c.end(), temperatures.begin(), temperatures.end());
+      c.push_back({"count", "-"});
+      break;
+  }
+  return table;
+}
+
+std::vector<std::vector<double>> measurement_rows(const Measurement& m, const Simulation& sim) {
+  const bool heat = sim.heat_enabled();
+  const Vec3 offset = offset_of(sim, m);
+  std::vector<double> lead;  // depth and time, in the table's order
+  const double depth =
+      m.depth_body >= 0 ? sim.walls.bodies[static_cast<std::size_t>(m.depth_body)].depth_m() : 0.0;
+  if (m.depth_body >= 0 && m.kind != MeasurementKind::profile) lead.push_back(depth);
+  lead.push_back(sim.time_s());
+  if (m.depth_body >= 0 && m.kind == MeasurementKind::profile) lead.push_back(depth);
+
+  std::vector<std::vector<double>> rows;
+  switch (m.kind) {
+    case MeasurementKind::region: {
+      const std::optional<double> threshold = threshold_of(sim);
+      const TemperatureStatistics s = region_statistics(sim.particles, m.region, offset, threshold);
+      std::vector<double> row = lead;
+      if (heat) add_temperatures(row, s);
+      row.push_back(static_cast<double>(s.count));
+      if (threshold) row.push_back(s.crossed_fraction());
+      rows.push_back(std::move(row));
+      break;
+    }
+    case MeasurementKind::band: {
+      const BandTemperatures b = band_temperatures(sim.particles, m.band_in, m.band_out, offset);
+      std::vector<double> row = lead;
+      row.insert(row.end(), {b.in.mean_K, b.out.mean_K, b.difference_K(), static_cast<double>(b.in.count),
+                             static_cast<double>(b.out.count)});
+      rows.push_back(std::move(row));
+      break;
+    }
+    case MeasurementKind::profile: {
+      const std::vector<TemperatureStatistics> bins = temperature_profile(sim.particles, m.profile, offset);
+      for (std::size_t k = 0; k < bins.size(); ++k) {
+        std::vector<double> row = lead;
+        row.push_back(m.profile.bin_centre_m(k));
+        if (heat) add_temperatures(row, bins[k]);
+        row.push_back(static_cast<double>(bins[k].count));
+        rows.push_back(std::move(row));
+      }
+      break;
+    }
+  }
+  return rows;
+}
+
+std::vector<SeriesColumn> thermal_history_columns(const Simulation& sim) {
+  if (!threshold_of(sim)) return {};
+  return {{"peak_temperature_max", "K"}, {"crossed_threshold_fraction", "-"}, {"time_above_threshold_mean", "s"}};
+}
+
+std::vector<double> thermal_history_row(const Simulation& sim) {
+  const std::optional<double> threshold = threshold_of(sim);
+  if (!threshold) return {};
+  const ThermalHistorySummary s = thermal_history_summary(sim.particles, *threshold);
+  return {s.peak_temperature_max_K, s.crossed_fraction(), s.time_above_threshold_mean_s};
+}
+
+MeasurementRunner::MeasurementRunner(const MeasurementPlan& plan) : plan_(plan) {
+  clocks_.reserve(plan_.items.size());
+  for (const Measurement& m : plan_.items) clocks_.emplace_back(m.schedule);
+}
+
+void MeasurementRunner::announce(const Simulation& sim, RunObserver& observer) const {
+  if (plan_.empty()) return;
+  std::vector<MeasurementTable> tables;
+  for (const Measurement& m : plan_.items) tables.push_back(measurement_table(m, sim));
+  observer.measurement_tables(tables);
+}
+
+double MeasurementRunner::depth_m(const Simulation& sim, const Measurement& m) const {
+  return m.depth_body >= 0 ? sim.walls.bodies[static_cast<std::size_t>(m.depth_body)].depth_m() : 0.0;
+}
+
+void MeasurementRunner::take(std::size_t k, const Simulation& sim, double half_step_s, RunObserver& observer) {
+  observer.measurement_rows(k, measurement_rows(plan_.items[k], sim));
+  clocks_[k].taken(sim.time_s(), half_step_s, depth_m(sim, plan_.items[k]));
+}
+
+void MeasurementRunner::with_time_series(const Simulation& sim, RunObserver& observer) {
+  for (std::size_t k = 0; k < plan_.items.size(); ++k)
+    if (plan_.items[k].schedule.with_time_series()) observer.measurement_rows(k, measurement_rows(plan_.items[k], sim));
+}
+
+void MeasurementRunner::before_step(const Simulation& sim, double half_step_s, RunObserver& observer) {
+  for (std::size_t k = 0; k < plan_.items.size(); ++k)
+    if (clocks_[k].due(sim.time_s(), half_step_s, depth_m(sim, plan_.items[k]))) take(k, sim, half_step_s, observer);
+}
+
+void MeasurementRunner::at_stage_end(const Simulation& sim, RunObserver& observer) {
+  for (std::size_t k = 0; k < plan_.items.size(); ++k)
+    if (clocks_[k].due_at_stage_end(sim.time_s())) take(k, sim, 0.0, observer);
+}
+
+void MeasurementRunner::count_step() {
+  for (MeasurementClock& clock : clocks_) clock.count_step();
+}
+
+}  // namespace regodem

@@ -695,6 +695,12 @@ RunOutcome PreparedRun::run(RunObserver& observer, const std::atomic<bool>& stop
   return run_stages(*impl_->simulation, impl_->plan, observer, stop_requested);
 }
 
+RunOutcome PreparedRun::resume(const Checkpoint& checkpoint, RunObserver& observer,
+                               const std::atomic<bool>& stop_requested) {
+  const RunResume from{checkpoint};
+  return run_stages(*impl_->simulation, impl_->plan, observer, stop_requested, &from);
+}
+
 std::vector<std::string> PreparedRun::describe() const { return impl_->description; }
 const Simulation& PreparedRun::simulation() const { return *impl_->simulation; }
 const StagePlan& PreparedRun::plan() const { return impl_->plan; }

@@ -13,6 +13,7 @@
 namespace regodem {
 
 class Simulation;
+struct RunState;
 
 struct StageInfo {
   std::string name;
@@ -66,6 +67,12 @@ class RunObserver {
                               const std::string& /*message*/) {}
   /// Bonds that broke in the last step, in the order they broke.
   virtual void bonds_broken(const std::vector<BondBreakEvent>& /*events*/) {}
+  /// Asked at step boundaries every few dozen steps: whether to write a checkpoint now
+  /// (a wall-clock interval).
+  virtual bool checkpoint_due() { return false; }
+  /// A checkpoint of the run as it stands (sim/run_checkpoint.hpp): when due, at the end
+  /// of every stage, and before returning on a stop request. The run can go on from it.
+  virtual void checkpoint(const RunState& /*state*/) {}
 };
 
 struct RunOutcome {

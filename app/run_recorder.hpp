@@ -1,6 +1,7 @@
 #pragma once
 // The RunObserver of `regodem run`: passes progress to the display, samples to the
-// time-series CSV, and keeps each stage's result and times for summary.json.
+// time-series CSV, keeps each stage's result and times for summary.json, and writes
+// checkpoints with what the outputs hold so far (a resumed run cuts them back to it).
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "checkpoint_keeper.hpp"
 #include "io/csv_time_series_writer.hpp"
 #include "io/summary_json_writer.hpp"
 #include "progress_display.hpp"
@@ -33,6 +35,19 @@ class RunRecorder final : public RunObserver {
   /// Appends the events to the breakage CSV, created at the first broken bond.
   void bonds_broken(const std::vector<BondBreakEvent>& events) override;
   void set_bond_breaks_path(std::filesystem::path path) { bond_breaks_path_ = std::move(path); }
+
+  /// Checkpoints go to `keeper`, with the run's identity.
+  void keep_checkpoints_with(CheckpointKeeper* keeper, RunIdentity identity) {
+    checkpoints_ = keeper;
+    identity_ = std::move(identity);
+  }
+  bool checkpoint_due() override;
+  void checkpoint(const RunState& state) override;
+  /// A resumed run: the outputs as the checkpoint knew them (CSV lengths, snapshot
+  /// collections, stage records, notices); call before the run starts.
+  void resume_outputs(const Checkpoint& checkpoint);
+  /// Why the last checkpoint could not be written, if it could not.
+  const std::string& checkpoint_failure() const { return checkpoint_failure_; }
 
   /// Stage records. The last stage started ends at `final_time_s` (the run's simulated
   /// time when it returned) and, if it never reported its end (the run threw), gets
@@ -63,6 +78,11 @@ class RunRecorder final : public RunObserver {
   std::vector<std::string> notices_;
   std::optional<std::size_t> last_started_index_;
   Clock::time_point stage_wall_start_;
+  CheckpointKeeper* checkpoints_ = nullptr;
+  RunIdentity identity_;
+  std::string checkpoint_failure_;
+  // A resumed run's time series: continue the file at this length instead of a new one.
+  std::optional<std::pair<std::uintmax_t, std::size_t>> continue_time_series_;
 };
 
 }  // namespace regodem::app

@@ -8,6 +8,7 @@
 #include "checkpoint_keeper.hpp"
 #include "commands.hpp"
 #include "core/error.hpp"
+#include "sim/run_checkpoint.hpp"
 
 namespace regodem::app {
 
@@ -33,6 +34,12 @@ int resume_run(const ResumeOptions& options) {
       point.checkpoint = read_checkpoint_file(file);
       identity = read_identity(point.checkpoint);
       point.file = file.string();
+      if (run_completed(point.checkpoint) && file == files.front()) {
+        fmt::print("regodem: the run in {} has completed: its last checkpoint, {}, is the end of its last stage; "
+                   "nothing to resume (a new scenario can start from it with initial_state)\n",
+                   options.run_directory, point.file);
+        return exit_status::success;
+      }
       break;
     } catch (const CheckpointError& error) {
       fmt::print(stderr, "regodem: {}\n", error.what());

@@ -40,6 +40,13 @@ void save_run_state(Checkpoint& checkpoint, const RunState& state) {
   checkpoint.add(kRun, 1, std::move(w));
 }
 
+bool run_completed(const Checkpoint& checkpoint) {
+  ByteReader r = checkpoint.reader(kRun);
+  const auto stages = r.get<std::uint64_t>();
+  const auto stage = r.get<std::uint64_t>();
+  return stage >= stages && r.get<std::uint8_t>() == 0;
+}
+
 RunPosition restore_run_state(const Checkpoint& checkpoint, StagePlan& plan, Rng& rng, SnapshotClock& snapshots) {
   ByteReader r = checkpoint.reader(kRun);
   RunPosition p;

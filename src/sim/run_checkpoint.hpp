@@ -50,6 +50,9 @@ struct RunResume {
   const Checkpoint& checkpoint;
 };
 
+/// Whether the checkpoint was taken after the run's last stage (nothing left to run).
+bool run_completed(const Checkpoint& checkpoint);
+
 /// Reads the run's section: the position, and restores the insertions' progress, the
 /// RNG and the snapshot clock. Throws CheckpointError when it does not fit the plan.
 RunPosition restore_run_state(const Checkpoint& checkpoint, StagePlan& plan, Rng& rng, SnapshotClock& snapshots);

@@ -5,7 +5,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -36,11 +35,6 @@ fs::path temporary_directory(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::string file_bytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 void write_bytes(const fs::path& p, const std::string& bytes) {
@@ -108,7 +102,9 @@ TEST(CheckpointFile, TruncatedFileIsRefused) {
     const std::string message = read_error(dir / "short.ckpt");
     EXPECT_NE(message, "") << keep;
     EXPECT_NE(message.find("short.ckpt"), std::string::npos) << message;
-    if (keep >= 24) EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+    if (keep >= 24) {
+      EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+    }
   }
   fs::remove_all(dir);
 }

@@ -314,6 +314,10 @@ struct ScenarioSpec {
   std::vector<BondSpec> bonds;
   HeatSpec heat;
   OutputSpec output;
+  // initial_state.checkpoint: a checkpoint file, or a run's output directory (its newest
+  // checkpoint), whose particles, contacts, bonds and temperatures the run starts with.
+  std::string initial_state_checkpoint;  // absolute; empty: none
+  SourceLocation initial_state_where;
 };
 
 }  // namespace regodem

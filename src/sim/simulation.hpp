@@ -20,6 +20,15 @@ namespace regodem {
 
 class Checkpoint;
 
+/// The particles a checkpoint holds, with the names of the materials they index.
+struct CheckpointParticles {
+  ParticleStore particles;
+  std::vector<std::string> material_names;
+  double time_s = 0.0;
+};
+/// Reads them (simulation_checkpoint.cpp); throws CheckpointError.
+CheckpointParticles read_checkpoint_particles(const Checkpoint& checkpoint);
+
 struct Domain {
   Vec3 min_m, max_m;
   bool contains(const Vec3& x) const {

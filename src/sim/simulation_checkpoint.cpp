@@ -208,6 +208,19 @@ void load_neighbors(ByteReader& r, NeighborList& nl, std::size_t particles, std:
 
 }  // namespace
 
+CheckpointParticles read_checkpoint_particles(const Checkpoint& checkpoint) {
+  CheckpointParticles saved;
+  ByteReader particles = checkpoint.reader(kParticles);
+  load_particles(particles, saved.particles);
+  ByteReader names = checkpoint.reader(kMaterials);
+  saved.material_names.resize(names.get<std::uint64_t>());
+  for (std::string& name : saved.material_names) name = names.get_string();
+  for (const MaterialIndex m : saved.particles.material)
+    if (m >= saved.material_names.size()) names.fail(fmt::format("a particle has material {} of {}", m, saved.material_names.size()));
+  checkpoint.reader(kClock).get(saved.time_s);
+  return saved;
+}
+
 void Simulation::save_state(Checkpoint& checkpoint) const {
   {
     ByteWriter w;

@@ -3,7 +3,7 @@
 // `regodem resume` ends in the very state of a run that was never stopped (time
 // series, snapshots and the final checkpoint's state sections, byte for byte). A
 // corrupt newest checkpoint is reported and the previous one used; a changed scenario
-// is refused.
+// is refused; a new scenario starts from another run's checkpoint.
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -187,6 +187,42 @@ TEST_F(CliResume, ChangedScenarioIsRefused) {
   std::ofstream(scenario, std::ios::binary | std::ios::trunc) << original;
   EXPECT_EQ(resumed.exit_code, 2) << resumed.output;
   EXPECT_TRUE(contains(resumed.output, "has changed")) << resumed.output;
+}
+
+/// Field `column` of a CSV line (no quoting in these files).
+std::string csv_field(const std::string& line, int column) {
+  std::size_t begin = 0;
+  for (int c = 0; c < column; ++c) begin = line.find(',', begin) + 1;
+  return line.substr(begin, line.find(',', begin) - begin);
+}
+
+std::vector<std::string> lines_of(const fs::path& path) {
+  std::ifstream input(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(input, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST_F(CliResume, NewScenarioStartsFromAnotherRunsCheckpoint) {
+  // The same bed under a hotter floor and without the press: initial_state names the
+  // finished run's directory (its newest checkpoint).
+  std::string scenario = read_file(dir_ / "small.yaml");
+  scenario.replace(scenario.find("insertions:"), std::string::npos,
+                   "initial_state: {checkpoint: " + (full_run() / "out").string() +
+                       "}\nstages:\n  - {name: heat, duration: 0.05 s}\noutput: {interval: 0.01 s}\n");
+  scenario.replace(scenario.find("temperature: 400 K"), 18, "temperature: 500 K");
+  std::ofstream(dir_ / "next.yaml") << scenario;
+  const Finished next = run_regodem({"run", "next.yaml", "-o", "next", "--threads", "1"}, dir_);
+  ASSERT_EQ(next.exit_code, 0) << next.output;
+  const std::vector<std::string> before = lines_of(full_run() / "out/time_series.csv");
+  const std::vector<std::string> after = lines_of(dir_ / "next/time_series.csv");
+  ASSERT_GE(after.size(), 2u);
+  EXPECT_EQ(csv_field(after[1], 0), "0");  // a new run: its own clock
+  for (const int column : {3, 4, 5, 6, 7, 8}) {
+    // particles, kinetic energies, potential energy, largest speed, particle contacts
+    EXPECT_EQ(csv_field(after[1], column), csv_field(before.back(), column)) << "column " << column;
+  }
+  EXPECT_TRUE(contains(read_file(dir_ / "next/summary.json"), "\"intact\": 20")) << read_file(dir_ / "next/summary.json");
 }
 
 TEST_F(CliResume, NoCheckpointIsABadInput) {

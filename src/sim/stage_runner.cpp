@@ -290,6 +290,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     std::uint64_t last_progress_step = 0;
     double steps_per_s = 0.0;
     std::uint64_t done = inside ? inside->done : 0;  // steps of this stage (thermal steps in a static-bed stage)
+    last_progress_step = done;
 
     double last_sampled_time_s = inside ? inside->last_sampled_time_s : std::numeric_limits<double>::quiet_NaN();
     auto sample = [&] {

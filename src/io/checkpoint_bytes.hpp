@@ -38,7 +38,7 @@ class ByteWriter {
   void put_vector(const std::vector<T>& values) {
     static_assert(std::is_trivially_copyable_v<T>, "put_vector() takes numbers or padding-free records");
     put(static_cast<std::uint64_t>(values.size()));
-    bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    if (!values.empty()) bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
   }
   void put_string(std::string_view text) {
     put(static_cast<std::uint64_t>(text.size()));
@@ -71,7 +71,8 @@ class ByteReader {
       throw CheckpointError(fmt::format("{} holds {} elements of {} bytes but has only {} bytes left", what_, count,
                                         sizeof(T), bytes_.size() - position_));
     values.resize(count);
-    std::memcpy(static_cast<void*>(values.data()), take(count * sizeof(T)), count * sizeof(T));
+    if (count > 0)  // an empty vector's data() may be null, which memcpy may not take
+      std::memcpy(static_cast<void*>(values.data()), take(count * sizeof(T)), count * sizeof(T));
   }
   std::string get_string() {
     const auto length = get<std::uint64_t>();

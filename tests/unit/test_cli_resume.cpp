@@ -20,6 +20,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "io/checkpoint_file.hpp"
 
@@ -222,7 +223,12 @@ TEST_F(CliResume, NewScenarioStartsFromAnotherRunsCheckpoint) {
     // particles, kinetic energies, potential energy, largest speed, particle contacts
     EXPECT_EQ(csv_field(after[1], column), csv_field(before.back(), column)) << "column " << column;
   }
-  EXPECT_TRUE(contains(read_file(dir_ / "next/summary.json"), "\"intact\": 20")) << read_file(dir_ / "next/summary.json");
+  // The bonds came along (the counts depend on the build's floating point: compare).
+  const auto intact = [](const fs::path& summary) {
+    return nlohmann::json::parse(read_file(summary)).at("bonds").at("intact").get<int>();
+  };
+  EXPECT_GT(intact(full_run() / "out/summary.json"), 0);
+  EXPECT_EQ(intact(dir_ / "next/summary.json"), intact(full_run() / "out/summary.json"));
 }
 
 TEST_F(CliResume, NoCheckpointIsABadInput) {

@@ -16,6 +16,7 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
+#include "checkpoint_keeper.hpp"
 #include "commands.hpp"
 #include "core/error.hpp"
 #include "human_format.hpp"
@@ -172,7 +173,8 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   return summary;
 }
 
-std::string final_line(const Ending& ending, const RunRecorder& recorder, const fs::path& directory) {
+std::string final_line(const Ending& ending, const RunRecorder& recorder, const CheckpointKeeper& checkpoints,
+                       const fs::path& directory) {
   const RunOutcome& outcome = ending.outcome;
   const std::string where = folder_for_message(directory);
   switch (ending.status) {
@@ -183,10 +185,13 @@ std::string final_line(const Ending& ending, const RunRecorder& recorder, const 
                          format_compact(outcome.particle_steps_per_s), where);
     case RunStatus::interrupted:
       return fmt::format(
-          "regodem: interrupted by {} {} at t = {} after {}; outputs so far in {} "
-          "(resuming is not available yet: checkpoints come in a later version)",
-          signal_name(stop_signal()), stage_phrase(recorder.current_stage()),
-          format_simulated_time(outcome.simulated_time_s), format_wall_duration(outcome.wall_s), where);
+          "regodem: interrupted by {} {} at t = {} after {}; outputs so far in {}; {}", signal_name(stop_signal()),
+          stage_phrase(recorder.current_stage()), format_simulated_time(outcome.simulated_time_s),
+          format_wall_duration(outcome.wall_s), where,
+          checkpoints.latest() && recorder.checkpoint_failure().empty()
+              ? fmt::format("checkpoint {}; continue with: regodem resume {}", checkpoints.latest()->string(),
+                            directory.string())
+              : fmt::format("no checkpoint could be written ({})", recorder.checkpoint_failure()));
     case RunStatus::failed:
       break;
   }
@@ -196,9 +201,8 @@ std::string final_line(const Ending& ending, const RunRecorder& recorder, const 
                      format_wall_duration(outcome.wall_s), where);
 }
 
-}  // namespace
-
-int run_scenario(const RunOptions& options) {
+/// `regodem run`, or with `resume` the continuation of a run from its checkpoint.
+int execute(const RunOptions& options, const ResumePoint* resume) {
   const auto started_at = std::chrono::system_clock::now();
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   omp_set_num_threads(threads);
@@ -211,9 +215,19 @@ int run_scenario(const RunOptions& options) {
     directory = options.output_directory.empty()
                     ? default_output_directory(scenario_name_of(*spec, options.scenario_path))
                     : fs::path(options.output_directory);
-    // Refuse a used directory before building, which may take a while, but clear it
-    // only after, so that a scenario that cannot run leaves a previous run's outputs.
-    check_output_directory(directory, options.overwrite);
+    if (resume) {
+      const RunIdentity identity = read_identity(resume->checkpoint);
+      if (identity.content_hash != spec->content_hash)
+        throw InputError(fmt::format(
+            "the scenario '{}' (with its --set values) has changed since the run wrote checkpoint '{}' (content hash "
+            "{}, now {}); resuming would not continue that run. Restore the file, or start a new run from the "
+            "checkpoint with `initial_state: {{checkpoint: {}}}`",
+            options.scenario_path, resume->file, identity.content_hash, spec->content_hash, resume->file));
+    } else {
+      // Refuse a used directory before building, which may take a while, but clear it
+      // only after, so that a scenario that cannot run leaves a previous run's outputs.
+      check_output_directory(directory, options.overwrite);
+    }
     prepared.emplace(PreparedRun::build(*spec, threads));
     std::vector<std::string> outputs{time_series_file,
                                      summary_file,
@@ -225,14 +239,17 @@ int run_scenario(const RunOptions& options) {
                                      bond_breaks_file,
                                      regions_folder,
                                      profiles_folder};
+    outputs.push_back(CheckpointKeeper::folder);
     for (const std::string& mesh_file : generated_mesh_files(*spec)) outputs.push_back(mesh_file);
-    prepare_output_directory(directory, options.overwrite, outputs);
+    if (!resume) prepare_output_directory(directory, options.overwrite, outputs);
   } catch (const InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
   }
-  write_reproduction_files(directory, options);
-  write_generated_meshes(directory, *spec);
+  if (!resume) {
+    write_reproduction_files(directory, options);
+    write_generated_meshes(directory, *spec);
+  }
 
   ProgressDisplay display(stderr, ::isatty(::fileno(stderr)) == 1, spec->output.progress_interval_s);
   std::vector<std::string> stage_names;
@@ -245,6 +262,20 @@ int run_scenario(const RunOptions& options) {
   }
   recorder.set_bond_breaks_path(directory / bond_breaks_file);
   recorder.set_measurements_directory(directory);
+  CheckpointKeeper checkpoints(directory, options.checkpoint_every_s);
+  recorder.keep_checkpoints_with(&checkpoints,
+                                 RunIdentity{fs::absolute(options.scenario_path).lexically_normal().string(),
+                                             options.overrides, spec->content_hash, threads});
+  if (resume) {
+    for (const std::string& skipped : resume->skipped) recorder.notice(skipped);
+    try {
+      recorder.resume_outputs(resume->checkpoint);
+    } catch (const std::exception& error) {
+      fmt::print(stderr, "regodem: error: cannot continue the outputs in {}: {}\n", directory.string(), error.what());
+      return exit_status::bad_input;
+    }
+    display.notice(fmt::format("resuming from {}", resume->file));
+  }
 
   const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   const auto wall_start = std::chrono::steady_clock::now();
@@ -253,7 +284,8 @@ int run_scenario(const RunOptions& options) {
   };
   Ending ending;
   try {
-    ending = ending_from_outcome(prepared->run(recorder, stop_requested));
+    ending = ending_from_outcome(resume ? prepared->resume(resume->checkpoint, recorder, stop_requested)
+                                        : prepared->run(recorder, stop_requested));
   } catch (const InputError& error) {
     // Something only the run could find out (a particle file that will not read).
     ending = ending_from_exception(error.what(), exit_status::bad_input, recorder, wall_s());
@@ -267,9 +299,15 @@ int run_scenario(const RunOptions& options) {
   }
   write_summary_json(directory / summary_file,
                      make_summary(ending, *spec, options, *prepared, recorder, started_at));
-  fmt::print("{}\n", final_line(ending, recorder, directory));
+  fmt::print("{}\n", final_line(ending, recorder, checkpoints, directory));
   std::fflush(stdout);
   return ending.exit_code;
 }
+
+}  // namespace
+
+int run_scenario(const RunOptions& options) { return execute(options, nullptr); }
+
+int continue_run(const RunOptions& options, const ResumePoint& resume) { return execute(options, &resume); }
 
 }  // namespace regodem::app

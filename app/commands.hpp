@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "io/checkpoint_file.hpp"
+
 namespace regodem::app {
 
 /// Exit statuses, documented in `regodem --help`.
@@ -20,6 +22,21 @@ struct RunOptions {
   int threads = 0;               // 0: OpenMP's default
   std::vector<std::string> overrides;  // key.path=value
   bool overwrite = false;
+  double checkpoint_every_s = 0.0;  // wall clock; 0: only at stage ends and on Ctrl-C
+};
+
+/// `regodem resume` (command_resume.cpp).
+struct ResumeOptions {
+  std::string run_directory;
+  int threads = 0;  // 0: the run's own (the same thread count continues bit for bit)
+  double checkpoint_every_s = 0.0;
+};
+
+/// A checkpoint `regodem resume` chose, with what it found on the way.
+struct ResumePoint {
+  Checkpoint checkpoint;
+  std::string file;
+  std::vector<std::string> skipped;  // newer checkpoints that could not be used, and why
 };
 
 struct ValidateOptions {
@@ -39,6 +56,9 @@ struct PlotOptions {
 };
 
 int run_scenario(const RunOptions& options);
+/// Runs on from a checkpoint into options.output_directory (command_run.cpp).
+int continue_run(const RunOptions& options, const ResumePoint& resume);
+int resume_run(const ResumeOptions& options);
 int plot_runs(const PlotOptions& options);
 int validate_scenario(const ValidateOptions& options);
 int print_info();

@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "core/error.hpp"
+#include "scenario/units.hpp"
 
 namespace {
 
@@ -16,6 +17,18 @@ constexpr const char* exit_status_help =
     "Exit status: 0 every stage finished (or the command succeeded); 1 a stage failed\n"
     "(blow-up, did not settle) or an internal error; 2 bad input (scenario, command line,\n"
     "output directory), nothing was run; 130 interrupted by SIGINT/SIGTERM.";
+
+/// "10min", "2 h", "90 s": a wall-clock duration in seconds (the scenario's units).
+double wall_duration_s(const std::string& text) {
+  const double seconds = regodem::parse_quantity(text, regodem::Dimension::time);
+  if (!(seconds > 0.0))
+    throw regodem::InputError(fmt::format("--checkpoint-every must be a positive duration, got '{}'", text));
+  return seconds;
+}
+
+constexpr const char* checkpoint_every_help =
+    "Also write a checkpoint every DURATION of wall-clock time, e.g. 10min, 2h (besides the end of each stage "
+    "and Ctrl-C)";
 
 constexpr const char* set_help =
     "Override a scenario value, e.g. --set stages.settle.duration=\"0.2 s\" (key path as the "
@@ -50,11 +63,29 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   run->add_flag("--overwrite", run_options.overwrite,
                 "Reuse a non-empty OUTDIR: replace the files a run writes, leave other files");
+  std::string run_checkpoint_every;
+  run->add_option("--checkpoint-every", run_checkpoint_every, checkpoint_every_help)->type_name("DURATION");
   run->footer(
       "Writes OUTDIR/time_series.csv (header: name [unit]), OUTDIR/summary.json, OUTDIR/scenario.yaml\n"
       "(a copy of SCENARIO) and OUTDIR/overrides.txt (the --set values); with output.snapshots, ParaView\n"
-      "files OUTDIR/particles.pvd, OUTDIR/walls.pvd and OUTDIR/vtk/*.vtp. Ctrl-C stops the run\n"
-      "cleanly and still writes the outputs; a second Ctrl-C ends it at once.");
+      "files OUTDIR/particles.pvd, OUTDIR/walls.pvd and OUTDIR/vtk/*.vtp. Checkpoints go to\n"
+      "OUTDIR/checkpoints/ at the end of each stage, every --checkpoint-every and on Ctrl-C, which stops the run\n"
+      "cleanly (exit status 130) and says how to go on: regodem resume OUTDIR. A second Ctrl-C ends it at once.");
+
+  ResumeOptions resume_options;
+  std::string resume_checkpoint_every;
+  CLI::App* resume = app.add_subcommand(
+      "resume", "Continue a run from its latest checkpoint, into the same OUTDIR, as if it had not stopped");
+  resume->add_option("OUTDIR", resume_options.run_directory, "Output directory of the run")->required();
+  resume->add_option("--threads", resume_options.threads,
+                     "OpenMP threads (default: the run's own; another count continues, but not bit for bit)")
+      ->type_name("N")
+      ->check(CLI::Range(1, 4096));
+  resume->add_option("--checkpoint-every", resume_checkpoint_every, checkpoint_every_help)->type_name("DURATION");
+  resume->footer(
+      "Uses the newest readable OUTDIR/checkpoints/checkpoint_NNNNNN.rgck (a corrupt one is reported and the one\n"
+      "before it used) and the run's scenario file, which must be unchanged. The CSV files are cut back to the\n"
+      "checkpoint and continued, the .pvd collections likewise. See docs/checkpoint-format.md.");
 
   ValidateOptions validate_options;
   CLI::App* validate = app.add_subcommand(
@@ -99,7 +130,7 @@ int main(int argc, char** argv) {
     // CLI11 reports a misspelt subcommand only as "a subcommand is required".
     const std::vector<std::string> unparsed = app.remaining();
     if (app.get_subcommands().empty() && !unparsed.empty() && !unparsed.front().starts_with('-')) {
-      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, validate, plot and info (see regodem --help)\n",
+      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, resume, validate, plot and info (see regodem --help)\n",
                  unparsed.front());
       return exit_status::bad_input;
     }
@@ -109,7 +140,14 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return run_scenario(run_options);
+    if (*run) {
+      if (!run_checkpoint_every.empty()) run_options.checkpoint_every_s = wall_duration_s(run_checkpoint_every);
+      return run_scenario(run_options);
+    }
+    if (*resume) {
+      if (!resume_checkpoint_every.empty()) resume_options.checkpoint_every_s = wall_duration_s(resume_checkpoint_every);
+      return resume_run(resume_options);
+    }
     if (*validate) return validate_scenario(validate_options);
     if (*info) return print_info();
     if (*plot) return plot_runs(plot_options);

@@ -1,6 +1,46 @@
 #include "run_recorder.hpp"
 
+#include <fmt/format.h>
+
+#include "sim/run_checkpoint.hpp"
+
 namespace regodem::app {
+namespace {
+
+constexpr const char* kOutputs = "OUTP";
+
+void save_entries(ByteWriter& w, const std::vector<PvdCollection::Entry>& entries) {
+  w.put(static_cast<std::uint64_t>(entries.size()));
+  for (const PvdCollection::Entry& e : entries) {
+    w.put(e.time_s);
+    w.put_string(e.file);
+  }
+}
+
+std::vector<PvdCollection::Entry> read_entries(ByteReader& r) {
+  std::vector<PvdCollection::Entry> entries(r.get<std::uint64_t>());
+  for (PvdCollection::Entry& e : entries) {
+    r.get(e.time_s);
+    e.file = r.get_string();
+  }
+  return entries;
+}
+
+template <class T>
+void save_optional(ByteWriter& w, const std::optional<T>& value) {
+  w.put(static_cast<std::uint8_t>(value.has_value()));
+  w.put(value ? static_cast<double>(*value) : 0.0);
+}
+
+template <class T>
+std::optional<T> read_optional(ByteReader& r) {
+  const bool present = r.get<std::uint8_t>() != 0;
+  const auto value = r.get<double>();
+  if (!present) return std::nullopt;
+  return static_cast<T>(value);
+}
+
+}  // namespace
 
 RunRecorder::RunRecorder(std::filesystem::path time_series_path, ProgressDisplay& display,
                          const std::vector<std::string>& planned_stage_names)
@@ -10,13 +50,103 @@ RunRecorder::RunRecorder(std::filesystem::path time_series_path, ProgressDisplay
 }
 
 void RunRecorder::columns(const std::vector<SeriesColumn>& columns) {
-  time_series_ = std::make_unique<CsvTimeSeriesWriter>(time_series_path_, columns);
+  if (continue_time_series_)
+    time_series_ = std::make_unique<CsvTimeSeriesWriter>(time_series_path_, columns.size(),
+                                                         continue_time_series_->first, continue_time_series_->second);
+  else
+    time_series_ = std::make_unique<CsvTimeSeriesWriter>(time_series_path_, columns);
+}
+
+bool RunRecorder::checkpoint_due() { return checkpoints_ != nullptr && checkpoints_->due(); }
+
+void RunRecorder::checkpoint(const RunState& state) {
+  if (checkpoints_ == nullptr) return;
+  try {
+    Checkpoint c;
+    save_run_state(c, state);
+    save_identity(c, identity_);
+    ByteWriter w;
+    w.put(static_cast<std::uint64_t>(time_series_ ? time_series_->bytes_written() : 0));
+    w.put(static_cast<std::uint64_t>(time_series_ ? time_series_->rows_written() : 0));
+    w.put(static_cast<std::uint64_t>(bond_breaks_ ? bond_breaks_->bytes_written() : 0));
+    w.put(static_cast<std::uint64_t>(bond_breaks_ ? bond_breaks_->rows_written() : 0));
+    w.put(static_cast<std::uint64_t>(snapshots_ ? snapshots_->series().count() : 0));
+    save_entries(w, snapshots_ ? snapshots_->series().particles().entries() : std::vector<PvdCollection::Entry>{});
+    save_entries(w, snapshots_ ? snapshots_->series().walls().entries() : std::vector<PvdCollection::Entry>{});
+    w.put(static_cast<std::uint64_t>(stages_.size()));
+    for (const StageSummary& s : stages_) {
+      w.put_string(s.name);
+      save_optional(w, s.result);
+      save_optional(w, s.start_time_s);
+      save_optional(w, s.end_time_s);
+      save_optional(w, s.wall_time_s);
+      w.put_string(s.message);
+    }
+    w.put(static_cast<std::uint64_t>(notices_.size()));
+    for (const std::string& n : notices_) w.put_string(n);
+    // Measurement files: where each stands, and its last sample for summary.json.
+    w.put(static_cast<std::uint64_t>(measurement_writers_.size()));
+    for (std::size_t k = 0; k < measurement_writers_.size(); ++k) {
+      w.put(static_cast<std::uint64_t>(measurement_writers_[k]->bytes_written()));
+      w.put(static_cast<std::uint64_t>(measurement_writers_[k]->rows_written()));
+      w.put(static_cast<std::uint64_t>(measurement_finals_[k].samples));
+      w.put(static_cast<std::uint64_t>(measurement_finals_[k].last_rows.size()));
+      for (const std::vector<double>& row : measurement_finals_[k].last_rows) w.put_vector(row);
+    }
+    c.add(kOutputs, 1, std::move(w));
+    checkpoints_->write(c);
+    checkpoint_failure_.clear();
+  } catch (const std::exception& error) {
+    // The run goes on: a checkpoint is a safety net, not a result.
+    checkpoint_failure_ = error.what();
+    notice(fmt::format("could not write a checkpoint: {}", error.what()));
+  }
+}
+
+void RunRecorder::resume_outputs(const Checkpoint& checkpoint) {
+  ByteReader r = checkpoint.reader(kOutputs);
+  const auto series_bytes = r.get<std::uint64_t>();
+  const auto series_rows = r.get<std::uint64_t>();
+  if (series_bytes > 0) continue_time_series_ = std::make_pair(std::uintmax_t{series_bytes}, std::size_t{series_rows});
+  const auto breaks_bytes = r.get<std::uint64_t>();
+  const auto breaks_rows = r.get<std::uint64_t>();
+  if (!bond_breaks_path_.empty()) {
+    if (breaks_bytes > 0)
+      bond_breaks_ = std::make_unique<CsvTimeSeriesWriter>(bond_breaks_path_, 9, breaks_bytes, breaks_rows);
+    else
+      std::filesystem::remove(bond_breaks_path_);  // breaks after the checkpoint: they happen again
+  }
+  const auto snapshot_count = r.get<std::uint64_t>();
+  std::vector<PvdCollection::Entry> particles = read_entries(r), walls = read_entries(r);
+  if (snapshots_ != nullptr) snapshots_->series().restore(snapshot_count, std::move(particles), std::move(walls));
+  stages_.resize(r.get<std::uint64_t>());
+  for (std::size_t k = 0; k < stages_.size(); ++k) {
+    StageSummary& s = stages_[k];
+    s.name = r.get_string();
+    s.result = read_optional<StageResult>(r);
+    s.start_time_s = read_optional<double>(r);
+    s.end_time_s = read_optional<double>(r);
+    s.wall_time_s = read_optional<double>(r);
+    s.message = r.get_string();
+    if (s.start_time_s) last_started_index_ = k;
+  }
+  notices_.resize(r.get<std::uint64_t>());
+  for (std::string& n : notices_) n = r.get_string();
+  continue_measurements_.resize(r.get<std::uint64_t>());
+  for (MeasurementContinuation& m : continue_measurements_) {
+    m.bytes = r.get<std::uint64_t>();
+    m.rows = r.get<std::uint64_t>();
+    m.samples = r.get<std::uint64_t>();
+    m.last_rows.resize(r.get<std::uint64_t>());
+    for (std::vector<double>& row : m.last_rows) r.get_vector(row);
+  }
 }
 
 void RunRecorder::stage_started(const StageInfo& stage) {
   if (stage.index >= stages_.size()) stages_.resize(stage.index + 1);
   // A stage ends where the next begins; the observer interface reports no end time.
-  if (last_started_index_ && !stages_[*last_started_index_].end_time_s) {
+  // (A resumed run starts its current stage again: that is no end.)
+  if (last_started_index_ && *last_started_index_ != stage.index && !stages_[*last_started_index_].end_time_s) {
     stages_[*last_started_index_].end_time_s = stage.start_time_s;
   }
   StageSummary& record = stages_[stage.index];
@@ -66,8 +196,17 @@ void RunRecorder::measurement_tables(const std::vector<MeasurementTable>& tables
   for (const MeasurementTable& table : tables) {
     const std::filesystem::path relative = std::filesystem::path(table.folder) / (table.name + ".csv");
     std::filesystem::create_directories(measurements_directory_ / table.folder);
-    measurement_writers_.push_back(std::make_unique<CsvTimeSeriesWriter>(measurements_directory_ / relative, table.columns));
-    measurement_finals_.push_back({table, relative.generic_string(), 0, {}});
+    const std::size_t k = measurement_writers_.size();
+    if (k < continue_measurements_.size()) {  // a resumed run: cut back to the checkpoint and go on
+      const MeasurementContinuation& m = continue_measurements_[k];
+      measurement_writers_.push_back(
+          std::make_unique<CsvTimeSeriesWriter>(measurements_directory_ / relative, table.columns.size(), m.bytes, m.rows));
+      measurement_finals_.push_back({table, relative.generic_string(), m.samples, m.last_rows});
+    } else {
+      measurement_writers_.push_back(
+          std::make_unique<CsvTimeSeriesWriter>(measurements_directory_ / relative, table.columns));
+      measurement_finals_.push_back({table, relative.generic_string(), 0, {}});
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The RunObserver of `regodem run`: passes progress to the display, samples to the
-// time-series CSV, and keeps each stage's result and times for summary.json.
+// time-series CSV, keeps each stage's result and times for summary.json, and writes
+// checkpoints with what the outputs hold so far (a resumed run cuts them back to it).
 #include <chrono>
 #include <filesystem>
 #include <memory>
@@ -8,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "checkpoint_keeper.hpp"
 #include "io/csv_time_series_writer.hpp"
 #include "io/summary_json_writer.hpp"
 #include "progress_display.hpp"
@@ -39,6 +41,19 @@ class RunRecorder final : public RunObserver {
   void set_measurements_directory(std::filesystem::path directory) { measurements_directory_ = std::move(directory); }
   /// Each table with its file and its last sample, for summary.json.
   const std::vector<MeasurementFinal>& measurement_finals() const { return measurement_finals_; }
+
+  /// Checkpoints go to `keeper`, with the run's identity.
+  void keep_checkpoints_with(CheckpointKeeper* keeper, RunIdentity identity) {
+    checkpoints_ = keeper;
+    identity_ = std::move(identity);
+  }
+  bool checkpoint_due() override;
+  void checkpoint(const RunState& state) override;
+  /// A resumed run: the outputs as the checkpoint knew them (CSV lengths, snapshot
+  /// collections, stage records, notices); call before the run starts.
+  void resume_outputs(const Checkpoint& checkpoint);
+  /// Why the last checkpoint could not be written, if it could not.
+  const std::string& checkpoint_failure() const { return checkpoint_failure_; }
 
   /// Stage records. The last stage started ends at `final_time_s` (the run's simulated
   /// time when it returned) and, if it never reported its end (the run threw), gets
@@ -72,6 +87,17 @@ class RunRecorder final : public RunObserver {
   std::vector<std::string> notices_;
   std::optional<std::size_t> last_started_index_;
   Clock::time_point stage_wall_start_;
+  CheckpointKeeper* checkpoints_ = nullptr;
+  RunIdentity identity_;
+  std::string checkpoint_failure_;
+  // A resumed run's time series: continue the file at this length instead of a new one.
+  std::optional<std::pair<std::uintmax_t, std::size_t>> continue_time_series_;
+  // A resumed run's measurement files, in table order: where to cut them back to.
+  struct MeasurementContinuation {
+    std::uint64_t bytes = 0, rows = 0, samples = 0;
+    std::vector<std::vector<double>> last_rows;
+  };
+  std::vector<MeasurementContinuation> continue_measurements_;
 };
 
 }  // namespace regodem::app

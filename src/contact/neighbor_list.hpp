@@ -72,6 +72,12 @@ class NeighborList {
   const std::vector<Vec3>& positions_at_build_m() const { return position_at_build_m_; }
 
   std::size_t pair_count() const { return partner.size(); }
+  /// For checkpoints: the positions at the last build and the build count, which the
+  /// public arrays above do not hold.
+  void restore_build_state(std::vector<Vec3> positions_at_build_m, std::uint64_t rebuilds) {
+    position_at_build_m_ = std::move(positions_at_build_m);
+    rebuilds_ = rebuilds;
+  }
   std::uint64_t rebuild_count() const { return rebuilds_; }
   /// Keeps the contact history by global id (rebuild() does it itself unless told it
   /// was done before the particles changed).

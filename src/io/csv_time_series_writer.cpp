@@ -37,6 +37,23 @@ CsvTimeSeriesWriter::CsvTimeSeriesWriter(std::filesystem::path path,
   write_line_and_flush(line_);
 }
 
+CsvTimeSeriesWriter::CsvTimeSeriesWriter(std::filesystem::path path, std::size_t column_count, std::uintmax_t bytes,
+                                         std::size_t rows)
+    : path_(std::move(path)), column_count_(column_count), rows_written_(rows), bytes_written_(bytes) {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path_, error);
+  if (error || size < bytes) {
+    throw std::system_error(error ? error : std::make_error_code(std::errc::invalid_argument),
+                            fmt::format("cannot continue '{}': it should hold at least {} bytes, it holds {}",
+                                        path_.string(), bytes, error ? 0 : size));
+  }
+  std::filesystem::resize_file(path_, bytes);
+  stream_.open(path_, std::ios::binary | std::ios::app);
+  if (!stream_) {
+    throw std::system_error(errno, std::generic_category(), fmt::format("cannot open '{}'", path_.string()));
+  }
+}
+
 void CsvTimeSeriesWriter::write_row(std::span<const double> values) {
   if (values.size() != column_count_) {
     throw std::invalid_argument(fmt::format("time-series row has {} values for {} columns of '{}'",
@@ -56,6 +73,7 @@ void CsvTimeSeriesWriter::write_line_and_flush(std::string_view line) {
   stream_.write(line.data(), static_cast<std::streamsize>(line.size()));
   stream_.put('\n');
   stream_.flush();
+  bytes_written_ += line.size() + 1;
   if (!stream_) {
     throw std::system_error(errno, std::generic_category(),
                             fmt::format("cannot write '{}'", path_.string()));

@@ -8,6 +8,11 @@
 
 namespace regodem {
 
+void PvdCollection::restore(std::vector<Entry> entries) {
+  entries_ = std::move(entries);
+  write_file_atomically(path_, to_string());
+}
+
 void PvdCollection::add(double time_s, const std::string& relative_file) {
   if (!entries_.empty() && time_s < entries_.back().time_s)
     throw std::invalid_argument(fmt::format("{}: time {:.17g} s comes before the previous {:.17g} s",

@@ -23,6 +23,9 @@ class PvdCollection {
   void add(double time_s, const std::string& relative_file);
 
   const std::vector<Entry>& entries() const { return entries_; }
+  /// Replaces the entries and rewrites the file (a resumed run: the collection as its
+  /// checkpoint knew it).
+  void restore(std::vector<Entry> entries);
   const std::filesystem::path& path() const { return path_; }
   /// The file's content for the entries so far.
   std::string to_string() const;

@@ -104,6 +104,13 @@ SnapshotSeries::SnapshotSeries(std::filesystem::path directory, VtpOptions optio
     throw std::system_error(error, fmt::format("cannot create '{}'", (directory_ / data_folder).string()));
 }
 
+void SnapshotSeries::restore(std::size_t count, std::vector<PvdCollection::Entry> particle_entries,
+                             std::vector<PvdCollection::Entry> wall_entries) {
+  count_ = count;
+  particles_.restore(std::move(particle_entries));
+  if (write_walls_) walls_.restore(std::move(wall_entries));
+}
+
 void SnapshotSeries::write(const ParticleSnapshot& particles, const WallSnapshot* walls) {
   const std::string particle_file = fmt::format("{}/particles_{:06d}.vtp", data_folder, count_);
   write_vtp(directory_ / particle_file, particle_document(particles, options_));

@@ -71,6 +71,11 @@ class SnapshotSeries {
   void write(const ParticleSnapshot& particles, const WallSnapshot* walls);
 
   std::size_t count() const { return count_; }
+  /// A resumed run: the series as its checkpoint knew it. The next snapshot is number
+  /// `count` (files of later numbers are overwritten) and the collections are
+  /// rewritten with the entries given.
+  void restore(std::size_t count, std::vector<PvdCollection::Entry> particle_entries,
+               std::vector<PvdCollection::Entry> wall_entries);
   const PvdCollection& particles() const { return particles_; }
   const PvdCollection& walls() const { return walls_; }
 

@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "core/error.hpp"
+#include "io/checkpoint_file.hpp"
 #include "io/particle_csv_reader.hpp"
 #include "sim/simulation.hpp"
 #include "sim/stage_plan.hpp"
@@ -489,6 +491,20 @@ PreparedRun::PreparedRun(PreparedRun&&) noexcept = default;
 PreparedRun& PreparedRun::operator=(PreparedRun&&) noexcept = default;
 PreparedRun::~PreparedRun() = default;
 
+/// initial_state.checkpoint: the file, or the newest checkpoint of a run's directory.
+std::filesystem::path initial_checkpoint_file(const ScenarioSpec& spec) {
+  namespace fs = std::filesystem;
+  const fs::path given(spec.initial_state_checkpoint);
+  if (!fs::is_directory(given)) return given;
+  fs::path newest;  // checkpoint_NNNNNN.rgck: zero-padded, so the name orders them
+  std::error_code ignored;
+  for (const fs::directory_entry& e : fs::directory_iterator(given / "checkpoints", ignored))
+    if (e.path().extension() == ".rgck" && (newest.empty() || e.path().filename() > newest.filename())) newest = e.path();
+  if (newest.empty())
+    fail(spec.initial_state_where, fmt::format("'{}' holds no checkpoints/checkpoint_NNNNNN.rgck", given.string()));
+  return newest;
+}
+
 PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   if (threads < 1) throw InputError(fmt::format("--threads must be at least 1, got {}", threads));
   PreparedRun run;
@@ -534,7 +550,42 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                                   in.from_file, temperature));
     impl.plan.insertions.push_back(std::move(ins));
   }
-  if (impl.plan.insertions.empty()) fail(SourceLocation{spec.file, 0, 0, "insertions"}, "no insertions: there would be no particles");
+  // A start from another run's checkpoint: its particles count like an insertion's.
+  std::optional<Checkpoint> initial;
+  std::vector<MaterialIndex> initial_materials;
+  if (!spec.initial_state_checkpoint.empty()) {
+    const std::filesystem::path file = initial_checkpoint_file(spec);
+    CheckpointParticles saved;
+    try {
+      initial = read_checkpoint_file(file);
+      saved = read_checkpoint_particles(*initial);
+    } catch (const CheckpointError& e) {
+      fail(spec.initial_state_where, e.what());
+    }
+    // Materials by name: the other scenario may list them in another order.
+    std::vector<char> used(saved.material_names.size(), 0);
+    for (const MaterialIndex m : saved.particles.material) used[m] = 1;
+    for (std::size_t k = 0; k < saved.material_names.size(); ++k) {
+      const int index = materials.find(saved.material_names[k]);
+      if (index < 0 && used[k])
+        fail(spec.initial_state_where,
+             fmt::format("the particles of checkpoint '{}' are of material '{}', which this scenario does not define",
+                         file.string(), saved.material_names[k]));
+      initial_materials.push_back(index < 0 ? MaterialIndex{0} : static_cast<MaterialIndex>(index));
+    }
+    for (std::size_t i = 0; i < saved.particles.size(); ++i) {
+      const MaterialIndex mi = initial_materials[saved.particles.material[i]];
+      particle_material[mi] = 1;
+      const Material& m = materials[mi];
+      min_radius = std::min(min_radius, saved.particles.radius_m[i]);
+      min_rayleigh = std::min(min_rayleigh, rayleigh_time_s(saved.particles.radius_m[i], m.density_kg_per_m3,
+                                                            m.shear_modulus_Pa, m.poisson_ratio));
+    }
+    lines.push_back(fmt::format("initial state: {} particles from checkpoint '{}' (taken at t = {:.6g} s), with "
+                                "their velocities, temperatures, contact history and bonds; this run starts at t = 0",
+                                saved.particles.size(), file.string(), saved.time_s));
+  }
+  if (impl.plan.insertions.empty() && !initial) fail(SourceLocation{spec.file, 0, 0, "insertions"}, "no insertions: there would be no particles");
   fill_pair_table(materials, spec, particle_material);
 
   if (spec.heat.enabled) {
@@ -656,6 +707,13 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   impl.simulation =
       std::make_unique<Simulation>(std::move(materials), std::move(walls), settings, std::move(wall_thermal));
   configure_bonds(spec, *impl.simulation, lines);
+  if (initial) {
+    try {
+      impl.simulation->adopt_particles(*initial, initial_materials);
+    } catch (const CheckpointError& e) {
+      fail(spec.initial_state_where, e.what());
+    }
+  }
 
   for (const StageSpec& st : spec.stages) {
     Stage stage;
@@ -737,6 +795,12 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
 
 RunOutcome PreparedRun::run(RunObserver& observer, const std::atomic<bool>& stop_requested) {
   return run_stages(*impl_->simulation, impl_->plan, observer, stop_requested);
+}
+
+RunOutcome PreparedRun::resume(const Checkpoint& checkpoint, RunObserver& observer,
+                               const std::atomic<bool>& stop_requested) {
+  const RunResume from{checkpoint};
+  return run_stages(*impl_->simulation, impl_->plan, observer, stop_requested, &from);
 }
 
 std::vector<std::string> PreparedRun::describe() const { return impl_->description; }

@@ -12,6 +12,7 @@
 
 namespace regodem {
 
+class Checkpoint;
 class Simulation;
 struct StagePlan;
 
@@ -27,6 +28,8 @@ class PreparedRun {
   /// Runs every stage, reporting to the observer; returns when all stages finished,
   /// one failed (blow-up, not settled in time) or stop_requested became true.
   RunOutcome run(RunObserver& observer, const std::atomic<bool>& stop_requested);
+  /// Continues a checkpointed run of this scenario from its checkpoint (`regodem resume`).
+  RunOutcome resume(const Checkpoint& checkpoint, RunObserver& observer, const std::atomic<bool>& stop_requested);
 
   /// Human-readable lines describing the plan: time step and Rayleigh time, walls,
   /// insertions, stages. `regodem validate` prints these.

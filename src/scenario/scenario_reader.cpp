@@ -26,7 +26,7 @@ const std::vector<std::string> kTopLevelKeys{
     "time_step",     "rayleigh_fraction",     "max_rayleigh_fraction",
     "neighbor_skin", "materials",   "interactions",         "walls",
     "insertions",    "stages",      "output",               "heat",
-    "bonds",         "measurements"};
+    "bonds",         "measurements", "initial_state"};
 
 /// `auto` (returned as 0, the builder's cue to choose) or a quantity greater than 0.
 double read_auto_or_positive(const YamlSection& root, std::string_view key, Dimension dimension) {
@@ -102,6 +102,32 @@ void read_globals(const YamlSection& root, ScenarioSpec& spec) {
   read_time_stepping(root, spec);
 }
 
+/// initial_state: {checkpoint: FILE or OUTDIR}, relative to the scenario file.
+void read_initial_state(const YamlSection& root, const ScenarioReferences& references, ScenarioSpec& spec) {
+  const auto value = root.get("initial_state");
+  if (!value) return;
+  const auto section = value->section();
+  if (!section) return;
+  section->allow_only({"checkpoint"});
+  const auto checkpoint = section->get("checkpoint");
+  if (!checkpoint) {
+    section->error("initial_state needs `checkpoint`: a checkpoint file or a run's output directory");
+    return;
+  }
+  const auto text = checkpoint->text();
+  if (!text) return;
+  std::filesystem::path path(*text);
+  if (path.is_relative()) path = std::filesystem::path(references.base_directory) / path;
+  std::error_code ignored;
+  path = std::filesystem::absolute(path, ignored).lexically_normal();
+  if (!std::filesystem::exists(path, ignored)) {
+    checkpoint->error(fmt::format("no such file or directory: '{}'", path.string()));
+    return;
+  }
+  spec.initial_state_checkpoint = path.string();
+  spec.initial_state_where = checkpoint->where();
+}
+
 ScenarioSpec read_tree(const YAML::Node& tree, ScenarioReadContext& context) {
   ScenarioSpec spec;
   spec.name = std::filesystem::path(context.file).stem().string();
@@ -138,6 +164,7 @@ ScenarioSpec read_tree(const YAML::Node& tree, ScenarioReadContext& context) {
   read_insertions(*root, references, spec);
   read_output(*root, spec);
   read_measurements(*root, references, spec);
+  read_initial_state(*root, references, spec);
   check_heat_requirements(spec, references, context.diagnostics);
   return spec;
 }

@@ -334,6 +334,10 @@ struct ScenarioSpec {
   HeatSpec heat;
   OutputSpec output;
   MeasurementsSpec measurements;
+  // initial_state.checkpoint: a checkpoint file, or a run's output directory (its newest
+  // checkpoint), whose particles, contacts, bonds and temperatures the run starts with.
+  std::string initial_state_checkpoint;  // absolute; empty: none
+  SourceLocation initial_state_where;
 };
 
 }  // namespace regodem

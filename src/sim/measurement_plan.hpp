@@ -6,6 +6,7 @@
 // listed times or depths.
 #include <cstddef>
 #include <string>
+#include <cstdint>
 #include <vector>
 
 #include "measure/measure_region.hpp"
@@ -67,6 +68,17 @@ class MeasurementClock {
     while (next_ < depths.size() && depth_m >= depths[next_] * (1.0 - 1e-12)) ++next_;
   }
   void count_step() { periodic_.count_step(); }
+
+  /// The running state, for checkpoints.
+  struct State {
+    SnapshotClock::State periodic;
+    std::uint64_t next = 0;  // the next listed time or depth
+  };
+  State state() const { return {periodic_.state(), next_}; }
+  void restore(const State& s) {
+    periodic_.restore(s.periodic);
+    next_ = static_cast<std::size_t>(s.next);
+  }
 
  private:
   const MeasurementSchedule* schedule_;

@@ -1,5 +1,9 @@
 #include "sim/measurement_runner.hpp"
 
+#include <fmt/format.h>
+
+#include <stdexcept>
+
 #include <limits>
 #include <optional>
 
@@ -156,6 +160,20 @@ void MeasurementRunner::at_stage_end(const Simulation& sim, RunObserver& observe
 
 void MeasurementRunner::count_step() {
   for (MeasurementClock& clock : clocks_) clock.count_step();
+}
+
+std::vector<MeasurementClock::State> MeasurementRunner::clock_states() const {
+  std::vector<MeasurementClock::State> states;
+  states.reserve(clocks_.size());
+  for (const MeasurementClock& clock : clocks_) states.push_back(clock.state());
+  return states;
+}
+
+void MeasurementRunner::restore_clocks(const std::vector<MeasurementClock::State>& states) {
+  if (states.size() != clocks_.size())
+    throw std::invalid_argument(fmt::format("holds {} measurement clocks, the scenario has {} measurements",
+                                            states.size(), clocks_.size()));
+  for (std::size_t k = 0; k < clocks_.size(); ++k) clocks_[k].restore(states[k]);
 }
 
 }  // namespace regodem

@@ -39,6 +39,11 @@ class MeasurementRunner {
   void at_stage_end(const Simulation& sim, RunObserver& observer);
   void count_step();
 
+  /// The clocks' states, one per measurement in plan order (checkpoints).
+  std::vector<MeasurementClock::State> clock_states() const;
+  /// Throws std::invalid_argument when the count does not match the plan.
+  void restore_clocks(const std::vector<MeasurementClock::State>& states);
+
  private:
   double depth_m(const Simulation& sim, const Measurement& m) const;
   void take(std::size_t k, const Simulation& sim, double half_step_s, RunObserver& observer);

@@ -13,6 +13,7 @@
 namespace regodem {
 
 class Simulation;
+struct RunState;
 
 struct StageInfo {
   std::string name;
@@ -79,6 +80,12 @@ class RunObserver {
   /// Rows of table `table` taken at one instant: one for a region or band, one per bin
   /// for a profile; values in the order of its columns.
   virtual void measurement_rows(std::size_t /*table*/, const std::vector<std::vector<double>>& /*rows*/) {}
+  /// Asked at step boundaries every few dozen steps: whether to write a checkpoint now
+  /// (a wall-clock interval).
+  virtual bool checkpoint_due() { return false; }
+  /// A checkpoint of the run as it stands (sim/run_checkpoint.hpp): when due, at the end
+  /// of every stage, and before returning on a stop request. The run can go on from it.
+  virtual void checkpoint(const RunState& /*state*/) {}
 };
 
 struct RunOutcome {

@@ -18,6 +18,17 @@
 
 namespace regodem {
 
+class Checkpoint;
+
+/// The particles a checkpoint holds, with the names of the materials they index.
+struct CheckpointParticles {
+  ParticleStore particles;
+  std::vector<std::string> material_names;
+  double time_s = 0.0;
+};
+/// Reads them (simulation_checkpoint.cpp); throws CheckpointError.
+CheckpointParticles read_checkpoint_particles(const Checkpoint& checkpoint);
+
 struct Domain {
   Vec3 min_m, max_m;
   bool contains(const Vec3& x) const {
@@ -137,6 +148,19 @@ class Simulation {
   /// The bonds broken since the last call, in the order they broke.
   std::vector<BondBreakEvent> take_bond_breaks();
   bool bond_breaks_pending() const { return !bond_breaks_.empty(); }
+
+  // Checkpoints (simulation_checkpoint.cpp; docs/checkpoint-format.md): every piece of
+  // state a step reads, the neighbour lists included, so that a restored simulation
+  // steps on bit for bit as the saved one does (same thread count).
+  void save_state(Checkpoint& checkpoint) const;
+  /// Restores save_state() into a simulation built from the same scenario. Throws
+  /// CheckpointError when the checkpoint does not fit it (other walls, particle fields).
+  /// With another thread count the neighbour lists are rebuilt (no longer bit for bit).
+  void restore_state(const Checkpoint& checkpoint);
+  /// A new run's start from another run's checkpoint: its particles, their temperatures,
+  /// contact history between particles, and bonds (simulation_checkpoint.cpp).
+  /// `material_of_saved`: this run's material index for each saved one.
+  void adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved);
 
   ParticleStore particles;
   MaterialTable materials;

@@ -26,6 +26,7 @@ class SimulationSnapshotWriter {
   void write(const Simulation& sim);
 
   const SnapshotSeries& series() const { return series_; }
+  SnapshotSeries& series() { return series_; }
 
   /// The snapshots' data without writing them (tests compare files against these).
   ParticleSnapshot particle_snapshot(const Simulation& sim);

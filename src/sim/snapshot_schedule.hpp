@@ -63,6 +63,21 @@ class SnapshotClock {
   }
   void count_step() { ++steps_since_; }
 
+  /// The running state, for checkpoints.
+  struct State {
+    bool taken_any = false;
+    double last_time_s = 0.0, next_time_s = 0.0, next_depth_m = 0.0;
+    std::uint64_t steps_since = 0;
+  };
+  State state() const { return {taken_any_, last_time_s_, next_time_s_, next_depth_m_, steps_since_}; }
+  void restore(const State& s) {
+    taken_any_ = s.taken_any;
+    last_time_s_ = s.last_time_s;
+    next_time_s_ = s.next_time_s;
+    next_depth_m_ = s.next_depth_m;
+    steps_since_ = s.steps_since;
+  }
+
  private:
   SnapshotSchedule schedule_;
   bool taken_any_ = false;

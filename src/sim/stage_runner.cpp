@@ -189,7 +189,7 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
 }
 
 RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
-                      const std::atomic<bool>& stop_requested) {
+                      const std::atomic<bool>& stop_requested, const RunResume* resume) {
   RunOutcome outcome;
   outcome.threads = sim.threads();
   outcome.time_step_s = sim.time_step_s();
@@ -201,6 +201,14 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
   measurements.announce(sim, observer);
   const double dt = sim.time_step_s();
   SnapshotClock snapshots(plan.snapshots);
+  // A resumed run: the RNG, insertions and snapshot clock now, the Simulation where its
+  // stage stood (after the stage's overrides, which would otherwise reset its forces).
+  RunPosition resumed;
+  if (resume) {
+    resumed = restore_run_state(resume->checkpoint, plan, rng, snapshots, measurements);
+    particle_steps = resumed.particle_steps;
+    outcome.stages_finished = resumed.stage;
+  }
   const auto snapshot_depth_m = [&] {
     const int body = plan.snapshots.depth_body;
     return body >= 0 ? sim.walls.bodies[static_cast<std::size_t>(body)].depth_m() : 0.0;
@@ -223,24 +231,29 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     return outcome;
   };
 
-  for (std::size_t s = 0; s < plan.stages.size(); ++s) {
+  if (resume && !resumed.inside_stage) sim.restore_state(resume->checkpoint);
+  for (std::size_t s = resume ? resumed.stage : 0; s < plan.stages.size(); ++s) {
     const Stage& stage = plan.stages[s];
+    // Resuming inside this stage: its start has happened; its loop goes on from `inside`.
+    const RunPosition* inside = resume && resumed.inside_stage && s == resumed.stage ? &resumed : nullptr;
     StageInfo info;
     info.name = stage.name;
     info.index = s;
     info.count = plan.stages.size();
-    info.start_time_s = sim.time_s();
+    info.start_time_s = inside ? inside->stage_start_time_s : sim.time_s();
     info.ends_when_settled = stage.until_settled;
-    info.planned_end_time_s = info.start_time_s + (stage.ends_at_depth()   ? time_to_depth_s(sim, stage)
-                                                   : stage.until_settled ? stage.max_duration_s
-                                                                         : stage.duration_s);
+    info.planned_end_time_s = inside ? inside->planned_end_time_s
+                                     : info.start_time_s + (stage.ends_at_depth()   ? time_to_depth_s(sim, stage)
+                                                            : stage.until_settled ? stage.max_duration_s
+                                                                                  : stage.duration_s);
     observer.stage_started(info);
     const MaterialTable original_pairs = apply_overrides(sim, stage.overrides);
+    if (inside) sim.restore_state(resume->checkpoint);
 
     std::vector<Insertion*> active;
     for (Insertion& ins : plan.insertions)
       if (ins.stage == s) {
-        ins.start(sim.time_s());
+        if (!inside) ins.start(sim.time_s());
         active.push_back(&ins);
       }
 
@@ -248,16 +261,21 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     std::string failure;
     StageResult result = StageResult::finished;
     try {
-      if (stage.form_bonds) {
+      if (stage.form_bonds && !inside) {
         const BondFormation& f = *stage.form_bonds;
         const std::size_t formed = sim.form_bonds(f.gap_fraction, f.materials, f.regions);
         observer.notice(fmt::format("stage '{}': formed {} bonds ({} intact in all)", stage.name, formed,
                                     sim.bond_counts().intact));
       }
-      if (stage.freezes_mechanics())
+      if (stage.freezes_mechanics() && inside) {
+        Stage same_step = stage;  // the heat step chosen at the stage's start
+        same_step.thermal_time_step_s = inside->step_s;
+        frozen.emplace(sim, same_step);
+      } else if (stage.freezes_mechanics()) {
         frozen.emplace(sim, stage);
-      else
+      } else {
         check_coupled_heat_step(sim);
+      }
     } catch (const std::exception& e) {
       failure = fmt::format("stage '{}' cannot start: {}", stage.name, e.what());
       result = StageResult::failed;
@@ -267,7 +285,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     const std::uint64_t check_every = frozen ? 1 : kCheckEverySteps;
     const bool ends_by_time = !stage.until_settled && !stage.ends_at_depth();
     const std::uint64_t planned_steps =
-        stage.ends_at_depth() ? static_cast<std::uint64_t>(std::ceil(time_to_depth_s(sim, stage) / dt))
+        inside                ? inside->planned_steps
+        : stage.ends_at_depth() ? static_cast<std::uint64_t>(std::ceil(time_to_depth_s(sim, stage) / dt))
         : stage.until_settled ? 0
         : frozen            ? static_cast<std::uint64_t>(std::ceil(stage.duration_s / step_s - 1e-9))
                             : static_cast<std::uint64_t>(std::llround(stage.duration_s / dt));
@@ -279,13 +298,15 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
                         : stage.ends_at_depth() ? std::max(time_to_depth_s(sim, stage), dt) / 100.0
                                                 : stage.duration_s / 100.0;
     sample_interval = std::max(sample_interval, step_s);  // a zero-length stage still samples once
-    double next_sample_s = sim.time_s();
+    if (inside) sample_interval = inside->sample_interval_s;
+    double next_sample_s = inside ? inside->next_sample_s : sim.time_s();
     auto last_progress_clock = Clock::now();
     std::uint64_t last_progress_step = 0;
     double steps_per_s = 0.0;
-    std::uint64_t done = 0;  // steps of this stage (thermal steps in a static-bed stage)
+    std::uint64_t done = inside ? inside->done : 0;  // steps of this stage (thermal steps in a static-bed stage)
+    last_progress_step = done;
 
-    double last_sampled_time_s = std::numeric_limits<double>::quiet_NaN();
+    double last_sampled_time_s = inside ? inside->last_sampled_time_s : std::numeric_limits<double>::quiet_NaN();
     auto sample = [&] {
       observer.sample(time_series_row(sim, s));
       measurements.with_time_series(sim, observer);
@@ -293,6 +314,23 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       while (next_sample_s <= sim.time_s() + 0.5 * step_s) next_sample_s += sample_interval;
     };
     const auto stage_clock = Clock::now();
+    // A checkpoint at the top of an iteration: resuming replays that iteration's
+    // insertions, sample and snapshot checks, which are no longer due.
+    auto checkpoint_here = [&](CheckpointReason reason) {
+      RunPosition at;
+      at.stage = s;
+      at.inside_stage = true;
+      at.stage_start_time_s = info.start_time_s;
+      at.planned_end_time_s = info.planned_end_time_s;
+      at.done = done;
+      at.planned_steps = planned_steps;
+      at.step_s = step_s;
+      at.sample_interval_s = sample_interval;
+      at.next_sample_s = next_sample_s;
+      at.last_sampled_time_s = last_sampled_time_s;
+      at.particle_steps = particle_steps;
+      observer.checkpoint(RunState{sim, plan, at, rng, snapshots, reason, &measurements});
+    };
 
     if (result == StageResult::finished) try {
       for (;;) {
@@ -338,10 +376,12 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             break;
           }
           if (stop_requested.load(std::memory_order_relaxed)) {
+            checkpoint_here(CheckpointReason::interrupted);
             result = StageResult::interrupted;
             failure = fmt::format("interrupted during stage '{}' at t = {:.6g} s", stage.name, sim.time_s());
             break;
           }
+          if (observer.checkpoint_due()) checkpoint_here(CheckpointReason::periodic);
           const double since = seconds_since(last_progress_clock);
           if (since >= kProgressEveryWallSeconds) {
             steps_per_s = static_cast<double>(done - last_progress_step) / since;
@@ -402,6 +442,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       return finish(false, failure);
     }
     ++outcome.stages_finished;
+    RunPosition next;  // between stages: the next one starts afresh
+    next.stage = s + 1;
+    next.particle_steps = particle_steps;
+    observer.checkpoint(RunState{sim, plan, next, rng, snapshots, CheckpointReason::stage_end, &measurements});
   }
   return finish(true, "");
 }

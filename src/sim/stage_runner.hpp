@@ -3,6 +3,7 @@
 // time-series samples and progress reports to an observer, and a clean stop on request.
 #include <atomic>
 
+#include "sim/run_checkpoint.hpp"
 #include "sim/run_observer.hpp"
 #include "sim/simulation.hpp"
 #include "sim/stage_plan.hpp"
@@ -14,7 +15,10 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim);
 /// One time-series row matching time_series_columns().
 std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_index);
 
+/// Runs the plan's stages; with `resume`, from a checkpoint of a run of the same plan:
+/// its state is restored (at the stage boundary or inside the stage where it was
+/// taken) and the run goes on bit for bit as it would have.
 RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
-                      const std::atomic<bool>& stop_requested);
+                      const std::atomic<bool>& stop_requested, const RunResume* resume = nullptr);
 
 }  // namespace regodem

@@ -423,7 +423,8 @@ TEST_F(CliTest, InterruptStopsCleanlyWritesSummaryAndExits130) {
     const std::string printed = read_file(log);
     EXPECT_EQ(exit_code, 130) << printed;
     EXPECT_TRUE(contains(printed, "regodem: interrupted by SIG")) << printed;
-    EXPECT_TRUE(contains(printed, "resuming is not available yet")) << printed;
+    EXPECT_TRUE(contains(printed, "continue with: regodem resume " + output.string())) << printed;
+    EXPECT_TRUE(fs::exists(output / "checkpoints")) << printed;
     ASSERT_TRUE(fs::exists(output / "summary.json")) << printed;
     const nlohmann::json summary = read_json(output / "summary.json");
     EXPECT_EQ(summary.at("outcome"), "interrupted");

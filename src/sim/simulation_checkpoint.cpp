@@ -1,0 +1,480 @@
+// Checkpoints of a Simulation (docs/checkpoint-format.md): everything a step reads, in
+// sections. The neighbour lists are saved as they are, not rebuilt: a rebuild re-sorts
+// the particles and changes the order in which forces are summed, so a run that is
+// checkpointed, or resumed, would no longer be the run that was not.
+#include <fmt/format.h>
+
+#include <limits>
+
+#include "io/checkpoint_file.hpp"
+#include "sim/simulation.hpp"
+
+namespace regodem {
+namespace {
+
+// Section tags and the versions of their layouts.
+constexpr const char* kParticles = "PART";
+constexpr const char* kMaterials = "MATN";
+constexpr const char* kClock = "SIMU";
+constexpr const char* kNeighbors = "NBRS";
+constexpr const char* kWalls = "WALL";
+constexpr const char* kWallHeat = "WTHM";
+constexpr const char* kBonds = "BOND";
+
+void put(ByteWriter& w, const Vec3& v) {
+  w.put(v.x);
+  w.put(v.y);
+  w.put(v.z);
+}
+Vec3 get_vec3(ByteReader& r) {
+  Vec3 v;
+  r.get(v.x);
+  r.get(v.y);
+  r.get(v.z);
+  return v;
+}
+
+void save_particles(ByteWriter& w, ParticleStore& particles) {
+  std::uint32_t fields = 0;
+  particles.for_each_field([&](auto&) { ++fields; });
+  w.put(fields);
+  particles.for_each_field([&](auto& field) {
+    w.put(static_cast<std::uint32_t>(sizeof(typename std::decay_t<decltype(field)>::value_type)));
+    w.put_vector(field);
+  });
+  w.put(particles.next_id());
+}
+
+/// Every field of for_each_field, so a field added there is saved and restored too; a
+/// checkpoint with another list of fields is refused.
+void load_particles(ByteReader& r, ParticleStore& particles) {
+  std::uint32_t fields = 0;
+  particles.for_each_field([&](auto&) { ++fields; });
+  const auto saved_fields = r.get<std::uint32_t>();
+  if (saved_fields != fields)
+    r.fail(fmt::format("holds {} particle fields, this regodem has {}: it was written by another version", saved_fields,
+                       fields));
+  std::size_t count = 0, index = 0;
+  particles.for_each_field([&](auto& field) {
+    const auto element_bytes = r.get<std::uint32_t>();
+    if (element_bytes != sizeof(typename std::decay_t<decltype(field)>::value_type))
+      r.fail(fmt::format("particle field {} has {}-byte elements, this regodem's {}", index, element_bytes,
+                         sizeof(typename std::decay_t<decltype(field)>::value_type)));
+    r.get_vector(field);
+    if (index == 0) count = field.size();
+    if (field.size() != count) r.fail(fmt::format("particle field {} has {} values for {} particles", index, field.size(), count));
+    ++index;
+  });
+  particles.set_next_id(r.get<ParticleId>());
+}
+
+void save_bonds(ByteWriter& w, const BondStore& b, const BondCounts& counts, const std::vector<BondBreakEvent>& pending) {
+  w.put(counts.formed);
+  w.put(counts.broken_in_tension);
+  w.put(counts.broken_in_shear);
+  w.put_vector(b.id_i);
+  w.put_vector(b.id_j);
+  w.put_vector(b.kind);
+  w.put_vector(b.rest_length_m);
+  w.put(static_cast<std::uint64_t>(b.size()));
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    const BondSection& s = b.section[k];
+    for (double v : {s.radius_m, s.area_m2, s.inertia_m4, s.polar_inertia_m4, s.inv_area_per_m2,
+                     s.radius_over_inertia_per_m3, s.radius_over_polar_inertia_per_m3})
+      w.put(v);
+    put(w, b.normal[k]);
+    const BondLoads& l = b.loads[k];
+    w.put(l.normal_force_N);
+    put(w, l.shear_force_N);
+    w.put(l.twist_moment_N_m);
+    put(w, l.bend_moment_N_m);
+    const BondAction& a = b.action[k];
+    put(w, a.force_on_i_N);
+    put(w, a.torque_on_i_N_m);
+    put(w, a.torque_on_j_N_m);
+  }
+  w.put_vector(b.heat_to_i_W);
+  w.put_vector(b.broken);
+  w.put(static_cast<std::uint64_t>(pending.size()));
+  for (const BondBreakEvent& e : pending) {
+    w.put(e.time_s);
+    put(w, e.position_m);
+    w.put(static_cast<std::uint8_t>(e.mode));
+    w.put(e.particle_i);
+    w.put(e.particle_j);
+    w.put(e.tensile_stress_Pa);
+    w.put(e.shear_stress_Pa);
+  }
+}
+
+void load_bonds(ByteReader& r, BondStore& b, BondCounts& counts, std::vector<BondBreakEvent>& pending) {
+  r.get(counts.formed);
+  r.get(counts.broken_in_tension);
+  r.get(counts.broken_in_shear);
+  r.get_vector(b.id_i);
+  r.get_vector(b.id_j);
+  r.get_vector(b.kind);
+  r.get_vector(b.rest_length_m);
+  const auto n = r.get<std::uint64_t>();
+  if (n != b.id_i.size() || n != b.id_j.size() || n != b.kind.size() || n != b.rest_length_m.size())
+    r.fail("the bond arrays differ in length");
+  b.section.assign(n, {});
+  b.normal.assign(n, {});
+  b.loads.assign(n, {});
+  b.action.assign(n, {});
+  for (std::size_t k = 0; k < n; ++k) {
+    BondSection& s = b.section[k];
+    for (double* v : {&s.radius_m, &s.area_m2, &s.inertia_m4, &s.polar_inertia_m4, &s.inv_area_per_m2,
+                      &s.radius_over_inertia_per_m3, &s.radius_over_polar_inertia_per_m3})
+      r.get(*v);
+    b.normal[k] = get_vec3(r);
+    BondLoads& l = b.loads[k];
+    r.get(l.normal_force_N);
+    l.shear_force_N = get_vec3(r);
+    r.get(l.twist_moment_N_m);
+    l.bend_moment_N_m = get_vec3(r);
+    BondAction& a = b.action[k];
+    a.force_on_i_N = get_vec3(r);
+    a.torque_on_i_N_m = get_vec3(r);
+    a.torque_on_j_N_m = get_vec3(r);
+  }
+  r.get_vector(b.heat_to_i_W);
+  r.get_vector(b.broken);
+  if (b.heat_to_i_W.size() != n || b.broken.size() != n) r.fail("the bond arrays differ in length");
+  b.local_i.assign(n, 0);
+  b.local_j.assign(n, 0);
+  pending.resize(r.get<std::uint64_t>());
+  for (BondBreakEvent& e : pending) {
+    r.get(e.time_s);
+    e.position_m = get_vec3(r);
+    e.mode = static_cast<BondBreak>(r.get<std::uint8_t>());
+    r.get(e.particle_i);
+    r.get(e.particle_j);
+    r.get(e.tensile_stress_Pa);
+    r.get(e.shear_stress_Pa);
+  }
+}
+
+/// Pair lists with their histories, and the wall and mesh lists.
+void save_neighbors(ByteWriter& w, const NeighborList& nl) {
+  w.put_vector(nl.offset);
+  w.put_vector(nl.partner);
+  w.put_vector(nl.tangential_history_m);
+  w.put_vector(nl.wall_offset);
+  w.put_vector(nl.wall_primitive);
+  w.put_vector(nl.wall_tangential_history_m);
+  w.put_vector(nl.mesh_offset);
+  w.put_vector(nl.mesh_wall);
+  w.put_vector(nl.mesh_triangle);
+  w.put_vector(nl.mesh_tangential_history_m);
+  w.put_vector(nl.thread_begin);
+  w.put_vector(nl.positions_at_build_m());
+  w.put(nl.rebuild_count());
+}
+
+void load_neighbors(ByteReader& r, NeighborList& nl, std::size_t particles, std::size_t primitives,
+                    std::size_t meshes) {
+  r.get_vector(nl.offset);
+  r.get_vector(nl.partner);
+  r.get_vector(nl.tangential_history_m);
+  r.get_vector(nl.wall_offset);
+  r.get_vector(nl.wall_primitive);
+  r.get_vector(nl.wall_tangential_history_m);
+  r.get_vector(nl.mesh_offset);
+  r.get_vector(nl.mesh_wall);
+  r.get_vector(nl.mesh_triangle);
+  r.get_vector(nl.mesh_tangential_history_m);
+  r.get_vector(nl.thread_begin);
+  std::vector<Vec3> at_build;
+  r.get_vector(at_build);
+  const auto rebuilds = r.get<std::uint64_t>();
+  nl.restore_build_state(std::move(at_build), rebuilds);
+  // A list of another particle count, or pointing past the arrays, would be read out
+  // of bounds by the force pass.
+  const auto csr_fits = [&](const std::vector<std::uint32_t>& offset, std::size_t entries) {
+    return offset.empty() || (offset.size() == particles + 1 && offset.back() == entries);
+  };
+  bool fits = csr_fits(nl.offset, nl.partner.size()) && csr_fits(nl.wall_offset, nl.wall_primitive.size()) &&
+              csr_fits(nl.mesh_offset, nl.mesh_triangle.size()) &&
+              nl.tangential_history_m.size() == nl.partner.size() &&
+              nl.wall_tangential_history_m.size() == nl.wall_primitive.size() &&
+              nl.mesh_tangential_history_m.size() == nl.mesh_triangle.size() &&
+              nl.mesh_wall.size() == nl.mesh_triangle.size();
+  for (std::uint32_t j : nl.partner) fits = fits && j < particles;
+  for (std::uint32_t p : nl.wall_primitive) fits = fits && p < primitives;
+  for (std::uint32_t m : nl.mesh_wall) fits = fits && m < meshes;
+  if (!fits) r.fail("the neighbour lists do not fit the particles and walls");
+}
+
+}  // namespace
+
+CheckpointParticles read_checkpoint_particles(const Checkpoint& checkpoint) {
+  CheckpointParticles saved;
+  ByteReader particles = checkpoint.reader(kParticles);
+  load_particles(particles, saved.particles);
+  ByteReader names = checkpoint.reader(kMaterials);
+  saved.material_names.resize(names.get<std::uint64_t>());
+  for (std::string& name : saved.material_names) name = names.get_string();
+  for (const MaterialIndex m : saved.particles.material)
+    if (m >= saved.material_names.size()) names.fail(fmt::format("a particle has material {} of {}", m, saved.material_names.size()));
+  checkpoint.reader(kClock).get(saved.time_s);
+  return saved;
+}
+
+void Simulation::save_state(Checkpoint& checkpoint) const {
+  {
+    ByteWriter w;
+    // for_each_field hands out mutable references; nothing is changed here.
+    save_particles(w, const_cast<ParticleStore&>(particles));
+    checkpoint.add(kParticles, 1, std::move(w));
+  }
+  {
+    ByteWriter w;
+    w.put(static_cast<std::uint64_t>(materials.size()));
+    for (std::size_t m = 0; m < materials.size(); ++m) w.put_string(materials[static_cast<MaterialIndex>(m)].name);
+    checkpoint.add(kMaterials, 1, std::move(w));
+  }
+  {
+    ByteWriter w;
+    w.put(time_s_);
+    w.put(step_);
+    w.put(settings_.time_step_s);
+    w.put(static_cast<std::int32_t>(settings_.threads));
+    w.put(static_cast<std::uint8_t>(forces_current_));
+    w.put(static_cast<std::int32_t>(active_threads_));
+    w.put(stats_.particle_contacts);
+    w.put(stats_.wall_contacts);
+    w.put(ledger_.reference_energy_J);
+    w.put(ledger_.boundary_heat_in_J);
+    w.put(ledger_.friction_heat_J);
+    w.put(friction_power_W_);
+    w.put_vector(wall_friction_power_W_);
+    put(w, grid_.origin_m);
+    w.put(grid_.cell_size_m);
+    w.put(static_cast<std::int32_t>(grid_.nx));
+    w.put(static_cast<std::int32_t>(grid_.ny));
+    w.put(static_cast<std::int32_t>(grid_.nz));
+    w.put(lost_particle_count_);
+    checkpoint.add(kClock, 1, std::move(w));
+  }
+  {
+    ByteWriter w;
+    save_neighbors(w, neighbors_);
+    checkpoint.add(kNeighbors, 1, std::move(w));
+  }
+  {
+    ByteWriter w;
+    w.put(static_cast<std::uint64_t>(walls.bodies.size()));
+    for (const WallBody& b : walls.bodies) {
+      w.put_string(b.name);
+      const WallMotion& m = b.motion;
+      put(w, m.velocity_m_per_s);
+      put(w, m.angular_velocity_rad_per_s);
+      put(w, m.axis_point_m);
+      w.put(m.start_s);
+      w.put(m.stop_s);
+      w.put(m.max_travel_m);
+      put(w, b.force_N);
+      put(w, b.torque_N_m);
+      put(w, b.displacement_m);
+      for (const auto& row : b.pose.rotation)
+        for (double v : row) w.put(v);
+      put(w, b.pose.translation_m);
+      w.put(b.travel_m);
+      w.put(b.depth_at_start_m);
+      put(w, b.feed_direction);
+      put(w, b.spin_axis);
+      w.put(b.displacement_since_build_m);
+    }
+    w.put(static_cast<std::uint64_t>(walls.primitives.size()));
+    for (const WallPrimitive& p : walls.primitives) {
+      put(w, p.point_m);
+      put(w, p.axis);
+    }
+    w.put(static_cast<std::uint64_t>(walls.meshes.size()));
+    checkpoint.add(kWalls, 1, std::move(w));
+  }
+  {
+    ByteWriter w;
+    w.put(static_cast<std::uint64_t>(wall_thermal.size()));
+    for (const ThermalWall& t : wall_thermal) {
+      w.put(static_cast<std::uint8_t>(t.mode));
+      w.put(t.temperature_K);
+      w.put(t.heat_flow_to_particles_W);
+      w.put(t.heat_to_particles_J);
+      w.put(t.friction_heat_J);
+    }
+    checkpoint.add(kWallHeat, 1, std::move(w));
+  }
+  {
+    ByteWriter w;
+    save_bonds(w, bonds_, bond_counts_, bond_breaks_);
+    checkpoint.add(kBonds, 1, std::move(w));
+  }
+}
+
+void Simulation::restore_state(const Checkpoint& checkpoint) {
+  {
+    ByteReader r = checkpoint.reader(kParticles);
+    load_particles(r, particles);
+  }
+  const std::size_t n = particles.size();
+  {
+    ByteReader r = checkpoint.reader(kMaterials);
+    const auto count = r.get<std::uint64_t>();
+    if (count != materials.size()) r.fail(fmt::format("has {} materials, the scenario {}", count, materials.size()));
+    for (std::size_t m = 0; m < count; ++m) {
+      const std::string name = r.get_string();
+      if (name != materials[static_cast<MaterialIndex>(m)].name)
+        r.fail(fmt::format("material {} is '{}', in the scenario '{}'", m, name,
+                           materials[static_cast<MaterialIndex>(m)].name));
+    }
+  }
+  int saved_threads = 0;
+  {
+    ByteReader r = checkpoint.reader(kClock);
+    r.get(time_s_);
+    r.get(step_);
+    const auto dt = r.get<double>();
+    if (dt != settings_.time_step_s)
+      r.fail(fmt::format("was written with a time step of {:.17g} s, the scenario gives {:.17g} s", dt,
+                         settings_.time_step_s));
+    saved_threads = r.get<std::int32_t>();
+    forces_current_ = r.get<std::uint8_t>() != 0;
+    active_threads_ = r.get<std::int32_t>();
+    r.get(stats_.particle_contacts);
+    r.get(stats_.wall_contacts);
+    r.get(ledger_.reference_energy_J);
+    r.get(ledger_.boundary_heat_in_J);
+    r.get(ledger_.friction_heat_J);
+    r.get(friction_power_W_);
+    r.get_vector(wall_friction_power_W_);
+    if (wall_friction_power_W_.size() != walls.bodies.size()) r.fail("holds another number of walls");
+    grid_.origin_m = get_vec3(r);
+    r.get(grid_.cell_size_m);
+    grid_.nx = r.get<std::int32_t>();
+    grid_.ny = r.get<std::int32_t>();
+    grid_.nz = r.get<std::int32_t>();
+    r.get(lost_particle_count_);
+    if (active_threads_ < 1 || active_threads_ > saved_threads) r.fail("holds an impossible thread count");
+  }
+  {
+    ByteReader r = checkpoint.reader(kWalls);
+    const auto bodies = r.get<std::uint64_t>();
+    if (bodies != walls.bodies.size())
+      r.fail(fmt::format("has {} wall bodies, the scenario {}", bodies, walls.bodies.size()));
+    for (WallBody& b : walls.bodies) {
+      const std::string name = r.get_string();
+      if (name != b.name) r.fail(fmt::format("has wall '{}' where the scenario has '{}'", name, b.name));
+      WallMotion& m = b.motion;
+      m.velocity_m_per_s = get_vec3(r);
+      m.angular_velocity_rad_per_s = get_vec3(r);
+      m.axis_point_m = get_vec3(r);
+      r.get(m.start_s);
+      r.get(m.stop_s);
+      r.get(m.max_travel_m);
+      b.force_N = get_vec3(r);
+      b.torque_N_m = get_vec3(r);
+      b.displacement_m = get_vec3(r);
+      for (auto& row : b.pose.rotation)
+        for (double& v : row) r.get(v);
+      b.pose.translation_m = get_vec3(r);
+      r.get(b.travel_m);
+      r.get(b.depth_at_start_m);
+      b.feed_direction = get_vec3(r);
+      b.spin_axis = get_vec3(r);
+      r.get(b.displacement_since_build_m);
+      b.spin_reach_cached = false;  // a cache: found again from the same pose
+    }
+    const auto primitives = r.get<std::uint64_t>();
+    if (primitives != walls.primitives.size())
+      r.fail(fmt::format("has {} wall primitives, the scenario {}", primitives, walls.primitives.size()));
+    for (WallPrimitive& p : walls.primitives) {
+      p.point_m = get_vec3(r);
+      p.axis = get_vec3(r);
+    }
+    if (r.get<std::uint64_t>() != walls.meshes.size()) r.fail("has another number of mesh walls than the scenario");
+  }
+  {
+    ByteReader r = checkpoint.reader(kWallHeat);
+    if (r.get<std::uint64_t>() != wall_thermal.size()) r.fail("has another number of thermal walls than the scenario");
+    for (ThermalWall& t : wall_thermal) {
+      if (r.get<std::uint8_t>() != static_cast<std::uint8_t>(t.mode)) r.fail("has a wall of another thermal mode");
+      r.get(t.temperature_K);
+      r.get(t.heat_flow_to_particles_W);
+      r.get(t.heat_to_particles_J);
+      r.get(t.friction_heat_J);
+    }
+  }
+  {
+    ByteReader r = checkpoint.reader(kNeighbors);
+    load_neighbors(r, neighbors_, n, walls.primitives.size(), walls.meshes.size());
+  }
+  {
+    ByteReader r = checkpoint.reader(kBonds);
+    load_bonds(r, bonds_, bond_counts_, bond_breaks_);
+    for (std::uint16_t k : bonds_.kind)
+      if (k >= bond_kinds_.size()) r.fail(fmt::format("has a bond of kind {}, the scenario {} kinds", k, bond_kinds_.size()));
+    for (std::size_t b = 0; b < bonds_.size(); ++b)
+      if (bonds_.id_i[b] >= particles.next_id() || bonds_.id_j[b] >= particles.next_id())
+        r.fail("has a bond to a particle that does not exist");
+    bonds_.refresh_indices(particles);
+  }
+  if (saved_threads != settings_.threads) {
+    // Other owner ranges: rebuild the lists for this thread count (the contact history
+    // goes across by particle ids), and the force sums change order.
+    rebuild_neighbors();
+    forces_current_ = false;
+  }
+}
+
+void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved) {
+  if (!particles.empty())
+    throw CheckpointError(fmt::format("particles from checkpoint '{}' must come before any other", checkpoint.source));
+  {
+    ByteReader r = checkpoint.reader(kParticles);
+    load_particles(r, particles);
+  }
+  const std::size_t n = particles.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    MaterialIndex& m = particles.material[i];
+    if (m >= material_of_saved.size())
+      throw CheckpointError(fmt::format("checkpoint '{}': particle {} has material {} of {}", checkpoint.source,
+                                        particles.id[i], m, material_of_saved.size()));
+    m = material_of_saved[m];
+    particles.conductivity_W_per_mK[i] = materials[m].conductivity_W_per_mK.at(particles.temperature_K[i]);
+    if (heat_enabled()) ledger_.reference_energy_J += particle_thermal_energy_J(i);
+  }
+  {
+    // The particle pairs and their springs; wall entries belong to the other run's walls.
+    ByteReader r = checkpoint.reader(kNeighbors);
+    NeighborList saved;
+    load_neighbors(r, saved, n, std::numeric_limits<std::size_t>::max(), std::numeric_limits<std::size_t>::max());
+    neighbors_ = NeighborList();
+    neighbors_.offset = std::move(saved.offset);
+    neighbors_.partner = std::move(saved.partner);
+    neighbors_.tangential_history_m = std::move(saved.tangential_history_m);
+    if (neighbors_.offset.empty()) neighbors_.offset.assign(n + 1, 0);
+    neighbors_.wall_offset.assign(n + 1, 0);
+    neighbors_.mesh_offset.assign(n + 1, 0);
+  }
+  {
+    ByteReader r = checkpoint.reader(kBonds);
+    BondCounts counts;
+    std::vector<BondBreakEvent> pending;
+    load_bonds(r, bonds_, counts, pending);
+    for (std::uint16_t k : bonds_.kind)
+      if (k >= bond_kinds_.size())
+        r.fail(fmt::format("has bonds of kind {}, but this scenario defines {} bond kinds (bond kinds are matched by "
+                           "their order in `bonds`)",
+                           k, bond_kinds_.size()));
+    bond_counts_ = {};
+    bond_counts_.formed = bonds_.size();
+    for (std::size_t b = 0; b < bonds_.size(); ++b) bonds_.broken[b] = 0;
+  }
+  // Sorts the particles and carries the springs over by particle ids; refreshes the bonds.
+  rebuild_neighbors();
+  forces_current_ = false;
+}
+
+}  // namespace regodem

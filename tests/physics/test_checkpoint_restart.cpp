@@ -1,0 +1,192 @@
+// Checkpoint and restart of a Simulation (issue 8): N steps in one go against N/2
+// steps, a checkpoint through its file bytes, a fresh simulation restored from it and
+// N/2 more. Positions, velocities, angular velocities, temperatures, contact history
+// (particle, wall and mesh springs), bonds and the walls must agree bit for bit, with
+// one thread and with two. The bed has what a drilling run has: a lumped cup, a fixed-
+// temperature floor, a mesh "drill" that feeds and turns, friction heating and bonds.
+#include <gtest/gtest.h>
+
+#include "core/rng.hpp"
+#include "geometry/triangle_mesh.hpp"
+#include "io/checkpoint_file.hpp"
+#include "physics_fixtures.hpp"
+
+namespace regodem::testing {
+namespace {
+
+constexpr double kRadius = 0.5e-3;
+
+TriangleMesh box_mesh(const Vec3& lo, const Vec3& hi) {
+  TriangleMeshBuilder builder;
+  const auto corner = [&](int k) { return Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z}; };
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    builder.add_triangle(corner(f[0]), corner(f[1]), corner(f[2]));
+    builder.add_triangle(corner(f[0]), corner(f[2]), corner(f[3]));
+  }
+  return std::move(builder).finish("paddle");
+}
+
+Simulation make_bed(int threads) {
+  SphereMaterial m;
+  m.shear_modulus = 1e7;
+  m.restitution = 0.3;
+  m.sliding_friction = 0.5;
+  m.rolling_friction = 0.1;
+  const double dt = 0.1 * rayleigh_time_for(m, kRadius);
+  WallSet walls;
+  walls.add_cylinder(walls.add_body("cup", {}), {0, 0, -0.004}, {0, 0, 1}, 0.0045, 0.012, true, false, false, false, 0);
+  walls.add_plane(walls.add_body("floor", {}), {0, 0, -0.004}, {0, 0, 1}, 0);
+  WallMotion drill;
+  drill.velocity_m_per_s = {0, 0, -0.05};
+  drill.angular_velocity_rad_per_s = {0, 0, 30.0};
+  drill.axis_point_m = {0, 0, 0};
+  drill.max_travel_m = 0.004;
+  const std::uint32_t paddle = walls.add_body("paddle", drill);
+  walls.add_mesh(paddle, box_mesh({-0.0025, -0.0006, 0.0}, {0.0025, 0.0006, 0.004}), 0);
+  SimulationSettings settings = settings_for(kRadius, dt, {0, 0, -9.81}, 0.02, threads);
+  settings.min_particles_per_thread = 100;  // both threads work on this small bed
+  settings.heat.enabled = true;
+  settings.heat.time_scale_factor = 1e3;
+  settings.heat.friction_heating = true;
+  ThermalWall cup, floor, paddle_heat;
+  cup.mode = WallThermalMode::lumped;
+  cup.temperature_K = 300.0;
+  cup.heat_capacity_J_per_K = 0.05;
+  floor.mode = WallThermalMode::fixed;
+  floor.prescribed_temperature_K = TimeTable({0.0, 0.05}, {400.0, 500.0});
+  paddle_heat.mode = WallThermalMode::fixed;
+  paddle_heat.prescribed_temperature_K = TimeTable(150.0);
+  Simulation sim(one_material(m), walls, settings, {cup, floor, paddle_heat});
+  BondParameters bond;
+  bond.normal_stiffness_Pa_per_m = 1e10;
+  bond.shear_stiffness_Pa_per_m = 4e9;
+  bond.tensile_strength_Pa = 2e4;  // weak: the paddle breaks some
+  bond.shear_strength_Pa = 2e4;
+  sim.configure_bonds({bond}, {0});
+  Rng rng(5);
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j)
+      for (int k = 0; k < 5; ++k) {
+        const Vec3 x{(i - 3.5) * 1.02e-3, (j - 3.5) * 1.02e-3, -0.0035 + k * 1.0e-3};
+        if (norm2(Vec3{x.x, x.y, 0}) > 0.004 * 0.004) continue;
+        NewParticle p = sphere(x, {rng.uniform(-0.02, 0.02), rng.uniform(-0.02, 0.02), 0.0},
+                               kRadius * rng.uniform(0.95, 1.0), m.density, rng.uniform(200.0, 300.0));
+        sim.add_particle(p);
+      }
+  return sim;
+}
+
+struct Phase {
+  std::uint64_t settle_steps, bonded_steps;
+};
+
+void run_first_part(Simulation& sim, const Phase& phase) {
+  sim.advance(phase.settle_steps);
+  EXPECT_GT(sim.form_bonds(0.05), 20u);
+}
+
+void expect_identical(const Simulation& a, const Simulation& b) {
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  EXPECT_EQ(a.time_s(), b.time_s());
+  EXPECT_EQ(a.step_count(), b.step_count());
+  for (std::size_t i = 0; i < a.particles.size(); ++i) {
+    ASSERT_EQ(a.particles.id[i], b.particles.id[i]) << i;
+    ASSERT_EQ(a.particles.position_m[i], b.particles.position_m[i]) << "particle " << a.particles.id[i];
+    ASSERT_EQ(a.particles.velocity_m_per_s[i], b.particles.velocity_m_per_s[i]) << "particle " << a.particles.id[i];
+    ASSERT_EQ(a.particles.angular_velocity_rad_per_s[i], b.particles.angular_velocity_rad_per_s[i]) << i;
+    ASSERT_EQ(a.particles.temperature_K[i], b.particles.temperature_K[i]) << "particle " << a.particles.id[i];
+    ASSERT_EQ(a.particles.force_N[i], b.particles.force_N[i]) << i;
+  }
+  const NeighborList &na = a.neighbor_list(), &nb = b.neighbor_list();
+  EXPECT_EQ(na.partner, nb.partner);
+  ASSERT_EQ(na.tangential_history_m.size(), nb.tangential_history_m.size());
+  for (std::size_t k = 0; k < na.tangential_history_m.size(); ++k)
+    ASSERT_EQ(na.tangential_history_m[k], nb.tangential_history_m[k]) << "pair entry " << k;
+  ASSERT_EQ(na.wall_tangential_history_m.size(), nb.wall_tangential_history_m.size());
+  for (std::size_t k = 0; k < na.wall_tangential_history_m.size(); ++k)
+    ASSERT_EQ(na.wall_tangential_history_m[k], nb.wall_tangential_history_m[k]) << "wall entry " << k;
+  ASSERT_EQ(na.mesh_tangential_history_m.size(), nb.mesh_tangential_history_m.size());
+  for (std::size_t k = 0; k < na.mesh_tangential_history_m.size(); ++k)
+    ASSERT_EQ(na.mesh_tangential_history_m[k], nb.mesh_tangential_history_m[k]) << "mesh entry " << k;
+  EXPECT_EQ(na.rebuild_count(), nb.rebuild_count());
+  for (std::size_t w = 0; w < a.wall_thermal.size(); ++w) {
+    EXPECT_EQ(a.wall_thermal[w].temperature_K, b.wall_thermal[w].temperature_K) << w;
+    EXPECT_EQ(a.wall_thermal[w].heat_to_particles_J, b.wall_thermal[w].heat_to_particles_J) << w;
+    EXPECT_EQ(a.walls.bodies[w].pose.translation_m, b.walls.bodies[w].pose.translation_m) << w;
+    EXPECT_EQ(a.walls.bodies[w].pose.rotation, b.walls.bodies[w].pose.rotation) << w;
+    EXPECT_EQ(a.walls.bodies[w].force_N, b.walls.bodies[w].force_N) << w;
+  }
+  EXPECT_EQ(a.bonds().id_i, b.bonds().id_i);
+  EXPECT_EQ(a.bond_counts().broken(), b.bond_counts().broken());
+  for (std::size_t k = 0; k < a.bonds().size(); ++k) {
+    ASSERT_EQ(a.bonds().loads[k].normal_force_N, b.bonds().loads[k].normal_force_N) << "bond " << k;
+    ASSERT_EQ(a.bonds().loads[k].shear_force_N, b.bonds().loads[k].shear_force_N) << "bond " << k;
+  }
+  EXPECT_EQ(a.thermal_ledger().boundary_heat_in_J, b.thermal_ledger().boundary_heat_in_J);
+  EXPECT_EQ(a.thermal_ledger().friction_heat_J, b.thermal_ledger().friction_heat_J);
+}
+
+void check_restart(int threads, const Phase& phase) {
+  Simulation whole = make_bed(threads);
+  run_first_part(whole, phase);
+  whole.advance(phase.bonded_steps);
+
+  Simulation first = make_bed(threads);
+  run_first_part(first, phase);
+  first.advance(phase.bonded_steps / 2);
+  Checkpoint saved;
+  first.save_state(saved);
+  const std::string bytes = encode_checkpoint(saved);
+  const Checkpoint loaded = decode_checkpoint(bytes, "in memory");
+
+  Simulation resumed = make_bed(threads);  // as `regodem resume` builds it: from the scenario
+  resumed.restore_state(loaded);
+  resumed.advance(phase.bonded_steps - phase.bonded_steps / 2);
+
+  // The run did what it should test: contacts with every kind of wall, sliding, bonds.
+  EXPECT_GT(whole.neighbor_list().rebuild_count(), 2u);
+  EXPECT_GT(whole.contact_statistics().particle_contacts, 20u);
+  EXPECT_GT(whole.walls.bodies[2].travel_m, 0.0);
+  bool mesh_spring = false;
+  for (const Vec3& s : whole.neighbor_list().mesh_tangential_history_m) mesh_spring = mesh_spring || s != Vec3{};
+  EXPECT_TRUE(mesh_spring) << "the paddle touches no particle";
+  EXPECT_GT(whole.bonds().size(), 0u);
+  expect_identical(whole, resumed);
+}
+
+TEST(CheckpointRestart, OneThreadBitForBit) { check_restart(1, {400, 1200}); }
+
+// Shorter: two threads on a small bed spend most of their time synchronising.
+TEST(CheckpointRestart, TwoThreadsBitForBit) { check_restart(2, {300, 400}); }
+
+TEST(CheckpointRestart, SavingDoesNotDisturbTheRun) {
+  Simulation a = make_bed(1), b = make_bed(1);
+  a.advance(300);
+  Checkpoint c;
+  a.save_state(c);
+  a.advance(300);
+  b.advance(600);
+  expect_identical(a, b);
+}
+
+TEST(CheckpointRestart, AnotherWallLayoutIsRefused) {
+  Simulation a = make_bed(1);
+  a.advance(10);
+  Checkpoint c;
+  a.save_state(c);
+  SphereMaterial m;
+  WallSet walls;
+  walls.add_plane(walls.add_body("floor", {}), {0, 0, -0.004}, {0, 0, 1}, 0);
+  Simulation other(one_material(m), walls, a.settings(), {});
+  try {
+    other.restore_state(decode_checkpoint(encode_checkpoint(c), "x.ckpt"));
+    FAIL() << "restored into other walls";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("x.ckpt"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("wall"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace regodem::testing

@@ -1,0 +1,242 @@
+// Checkpoints through the command line, with a real signal: `regodem run` gets SIGINT
+// once its time series has begun, exits 130 with the command that continues it, and
+// `regodem resume` ends in the very state of a run that was never stopped (time
+// series, snapshots and the final checkpoint's state sections, byte for byte). A
+// corrupt newest checkpoint is reported and the previous one used; a changed scenario
+// is refused; a new scenario starts from another run's checkpoint.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/checkpoint_file.hpp"
+
+extern char** environ;
+
+namespace regodem {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Finished {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+std::string read_file(const fs::path& path) {
+  std::ifstream input(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(input), std::istreambuf_iterator<char>()};
+}
+
+std::size_t line_count(const fs::path& path) {
+  const std::string text = read_file(path);
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+/// Starts regodem with `arguments` in `directory`, output to `log`.
+pid_t start_regodem(const std::vector<std::string>& arguments, const fs::path& directory, const fs::path& log) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addchdir_np(&actions, directory.c_str());
+  std::vector<std::string> all{REGODEM_BINARY};
+  all.insert(all.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int error = posix_spawn(&pid, REGODEM_BINARY, &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  EXPECT_EQ(error, 0);
+  return pid;
+}
+
+Finished wait_for(pid_t pid, const fs::path& log) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), read_file(log)};
+}
+
+Finished run_regodem(const std::vector<std::string>& arguments, const fs::path& directory) {
+  const fs::path log = directory / "regodem.log";
+  return wait_for(start_regodem(arguments, directory, log), log);
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+class CliResume : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("regodem_cli_resume_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    fs::copy_file(fs::path(REGODEM_SOURCE_DIR) / "tests/data/scenarios/checkpoint_small.yaml", dir_ / "small.yaml");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// The uninterrupted run, once per test program.
+  const fs::path& full_run() {
+    static fs::path full;
+    static const struct RemoveAtExit {
+      ~RemoveAtExit() { fs::remove_all(full); }
+    } remove_at_exit;
+    if (full.empty()) {
+      full = fs::temp_directory_path() / ("regodem_cli_resume_full_" + std::to_string(::getpid()));
+      fs::remove_all(full);
+      fs::create_directories(full);
+      fs::copy_file(dir_ / "small.yaml", full / "small.yaml");
+      const Finished f = run_regodem({"run", "small.yaml", "-o", "out", "--threads", "1"}, full);
+      EXPECT_EQ(f.exit_code, 0) << f.output;
+    }
+    return full;
+  }
+
+  /// The newest checkpoint of a run directory.
+  static fs::path newest_checkpoint(const fs::path& run) {
+    fs::path newest;
+    for (const auto& e : fs::directory_iterator(run / "checkpoints"))
+      if (newest.empty() || e.path().filename() > newest.filename()) newest = e.path();
+    return newest;
+  }
+
+  /// Same final state: the outputs, and every state section of the last checkpoint
+  /// (the outputs section holds wall-clock times, which differ).
+  static void expect_same_run(const fs::path& a, const fs::path& b) {
+    EXPECT_EQ(read_file(a / "time_series.csv"), read_file(b / "time_series.csv"));
+    EXPECT_EQ(read_file(a / "particles.pvd"), read_file(b / "particles.pvd"));
+    EXPECT_EQ(read_file(a / "walls.pvd"), read_file(b / "walls.pvd"));
+    for (const auto& e : fs::directory_iterator(a / "vtk"))
+      EXPECT_EQ(read_file(e.path()), read_file(b / "vtk" / e.path().filename())) << e.path().filename();
+    std::size_t vtk_files = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(b / "vtk")) ++vtk_files;
+    EXPECT_EQ(vtk_files, static_cast<std::size_t>(std::distance(fs::directory_iterator(a / "vtk"), fs::directory_iterator{})));
+    const Checkpoint ca = read_checkpoint_file(newest_checkpoint(a)), cb = read_checkpoint_file(newest_checkpoint(b));
+    for (const char* tag : {"PART", "SIMU", "NBRS", "WALL", "WTHM", "BOND", "RUNP"}) {
+      const auto body = [&](const Checkpoint& c) {
+        for (const CheckpointSection& s : c.sections())
+          if (s.tag == tag) return s.body;
+        return std::string("missing");
+      };
+      EXPECT_EQ(body(ca), body(cb)) << "section " << tag;
+    }
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(CliResume, SigintLeavesACheckpointAndResumeEndsAsTheUninterruptedRun) {
+  const fs::path full = full_run() / "out";
+  const fs::path log = dir_ / "run.log";
+  const pid_t pid = start_regodem({"run", "small.yaml", "-o", "out", "--threads", "1"}, dir_, log);
+  // Once the time series has its header and two rows, the run is under way.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (line_count(dir_ / "out/time_series.csv") < 3 && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  const Finished interrupted = wait_for(pid, log);
+  ASSERT_EQ(interrupted.exit_code, 130) << interrupted.output;
+  EXPECT_TRUE(contains(interrupted.output, "interrupted by SIGINT")) << interrupted.output;
+  EXPECT_TRUE(contains(interrupted.output, "continue with: regodem resume out")) << interrupted.output;
+  ASSERT_FALSE(newest_checkpoint(dir_ / "out").empty());
+  EXPECT_LT(line_count(dir_ / "out/time_series.csv"), line_count(full / "time_series.csv"));
+
+  const Finished resumed = run_regodem({"resume", "out"}, dir_);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, "resuming from")) << resumed.output;
+  expect_same_run(full, dir_ / "out");
+}
+
+TEST_F(CliResume, CorruptNewestCheckpointIsReportedAndThePreviousUsed) {
+  fs::copy(full_run() / "out", dir_ / "out", fs::copy_options::recursive);
+  // The run is complete: its newest checkpoint is the end of the last stage, the one
+  // before it the end of the first. Damage the newest.
+  const fs::path newest = newest_checkpoint(dir_ / "out");
+  std::string bytes = read_file(newest);
+  bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x40);
+  std::ofstream(newest, std::ios::binary | std::ios::trunc) << bytes;
+  const Finished resumed = run_regodem({"resume", "out"}, dir_);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, newest.filename().string())) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, "is corrupt")) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, "resuming from the previous checkpoint")) << resumed.output;
+  expect_same_run(full_run() / "out", dir_ / "out");  // the second stage again, the same
+}
+
+TEST_F(CliResume, ChangedScenarioIsRefused) {
+  fs::copy(full_run() / "out", dir_ / "out", fs::copy_options::recursive);
+  fs::remove(newest_checkpoint(dir_ / "out"));
+  // resume reads the scenario where the run found it: change that file.
+  const fs::path scenario = full_run() / "small.yaml";
+  const std::string original = read_file(scenario);
+  std::ofstream(scenario, std::ios::app) << "# edited\n";
+  const Finished resumed = run_regodem({"resume", "out"}, dir_);
+  std::ofstream(scenario, std::ios::binary | std::ios::trunc) << original;
+  EXPECT_EQ(resumed.exit_code, 2) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, "has changed")) << resumed.output;
+}
+
+/// Field `column` of a CSV line (no quoting in these files).
+std::string csv_field(const std::string& line, int column) {
+  std::size_t begin = 0;
+  for (int c = 0; c < column; ++c) begin = line.find(',', begin) + 1;
+  return line.substr(begin, line.find(',', begin) - begin);
+}
+
+std::vector<std::string> lines_of(const fs::path& path) {
+  std::ifstream input(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(input, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST_F(CliResume, NewScenarioStartsFromAnotherRunsCheckpoint) {
+  // The same bed under a hotter floor and without the press: initial_state names the
+  // finished run's directory (its newest checkpoint).
+  std::string scenario = read_file(dir_ / "small.yaml");
+  scenario.replace(scenario.find("insertions:"), std::string::npos,
+                   "initial_state: {checkpoint: " + (full_run() / "out").string() +
+                       "}\nstages:\n  - {name: heat, duration: 0.05 s}\noutput: {interval: 0.01 s}\n");
+  scenario.replace(scenario.find("temperature: 400 K"), 18, "temperature: 500 K");
+  std::ofstream(dir_ / "next.yaml") << scenario;
+  const Finished next = run_regodem({"run", "next.yaml", "-o", "next", "--threads", "1"}, dir_);
+  ASSERT_EQ(next.exit_code, 0) << next.output;
+  const std::vector<std::string> before = lines_of(full_run() / "out/time_series.csv");
+  const std::vector<std::string> after = lines_of(dir_ / "next/time_series.csv");
+  ASSERT_GE(after.size(), 2u);
+  EXPECT_EQ(csv_field(after[1], 0), "0");  // a new run: its own clock
+  for (const int column : {3, 4, 5, 6, 7, 8}) {
+    // particles, kinetic energies, potential energy, largest speed, particle contacts
+    EXPECT_EQ(csv_field(after[1], column), csv_field(before.back(), column)) << "column " << column;
+  }
+  // The bonds came along (the counts depend on the build's floating point: compare).
+  const auto intact = [](const fs::path& summary) {
+    return nlohmann::json::parse(read_file(summary)).at("bonds").at("intact").get<int>();
+  };
+  EXPECT_GT(intact(full_run() / "out/summary.json"), 0);
+  EXPECT_EQ(intact(dir_ / "next/summary.json"), intact(full_run() / "out/summary.json"));
+}
+
+TEST_F(CliResume, NoCheckpointIsABadInput) {
+  fs::create_directories(dir_ / "empty");
+  const Finished resumed = run_regodem({"resume", "empty"}, dir_);
+  EXPECT_EQ(resumed.exit_code, 2) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, "holds no checkpoint")) << resumed.output;
+}
+
+}  // namespace
+}  // namespace regodem

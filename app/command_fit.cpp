@@ -289,7 +289,7 @@ json solve_and_report(const FitOptions& options, const FitInputs& in, const std:
     }
     std::string free_names;
     for (const std::size_t f : free_factors) free_names += (free_names.empty() ? "" : ", ") + in.factor_names[f];
-    fmt::print("Solve {} together for {}{} (Newton from a grid of starts over the design range):\n", names,
+    fmt::print("Solve {} together for {}{} (Newton from a grid of starts around the design range):\n", names,
                free_names, fixed_text.empty() ? "" : ", with " + fixed_text);
     solutions = doe::solve_simultaneously(models, targets, x, free_factors, in.ranges);
     j["mode"] = "simultaneous";

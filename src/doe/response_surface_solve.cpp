@@ -22,16 +22,20 @@ namespace {
 
 double span(const FactorRange& range) { return std::max(range.high - range.low, 1e-300); }
 
-/// Grid points per free factor: about 20 starts for one, a few hundred for two, and
-/// a coarser grid beyond so the count stays in the thousands.
+/// Grid points per free factor: 31 starts for one, a few hundred for two, and a coarser
+/// grid beyond so the count stays in the thousands.
 int starts_per_factor(std::size_t free_count) {
   switch (free_count) {
-    case 1: return 21;
-    case 2: return 15;
-    case 3: return 9;
+    case 1: return 31;
+    case 2: return 21;
+    case 3: return 11;
     default: return 5;
   }
 }
+
+/// The starts cover the design range widened by one range-width on each side, so that
+/// roots just outside it (which must be reported, flagged) are found too.
+constexpr double start_margin_spans = 1.0;
 
 /// Newton's method from `x` for models[i](x) = targets[i], moving only `free_factors`.
 /// Returns false when it stalls (the line search finds no decrease) or wanders off.
@@ -166,7 +170,8 @@ std::vector<Solution> solve_simultaneously(const std::vector<const PolynomialMod
     for (const std::size_t f : free_factors) {
       const auto index = static_cast<double>(rest % static_cast<std::size_t>(per_factor));
       rest /= static_cast<std::size_t>(per_factor);
-      start[f] = ranges[f].low + span(ranges[f]) * index / (per_factor - 1);
+      start[f] = ranges[f].low - start_margin_spans * span(ranges[f]) +
+                 (1.0 + 2.0 * start_margin_spans) * span(ranges[f]) * index / (per_factor - 1);
     }
     if (!newton(models, targets, start, free_factors, ranges)) continue;
     const bool known = std::any_of(roots.begin(), roots.end(), [&](const std::vector<double>& root) {

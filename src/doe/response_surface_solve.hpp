@@ -49,7 +49,8 @@ std::vector<Solution> solve_sequentially(const std::vector<SolveStep>& steps, co
 
 /// (b) Several responses at once, as many as free factors: Newton's method with a
 /// backtracking line search on ‖residual‖² from a grid of starts over the design range of
-/// the free factors; converged roots are de-duplicated (1e-6 of each range apart).
+/// the free factors widened by one range-width on each side; converged roots are
+/// de-duplicated (1e-6 of each range apart). Roots far beyond the design range may be missed.
 /// `models[i]` must reach `targets[i]`; factors not in `free_factors` stay at `x`.
 std::vector<Solution> solve_simultaneously(const std::vector<const PolynomialModel*>& models,
                                            const std::vector<double>& targets, const std::vector<double>& x,

@@ -75,6 +75,22 @@ TEST(ResponseSurfaceSolve, BothEquationsTogether) {
   EXPECT_EQ(roots.size(), 2U);  // the other pair: (1110.6, 663.5), beyond +α in λ
 }
 
+TEST(ResponseSurfaceSolve, TogetherFindsRootsJustOutsideTheDesignRange) {
+  // B = A² and B = (A + 1)/2 meet at A = 1 and A = −1/2; the runs covered only 0 ≤ A, B ≤ 0.8.
+  const std::vector<std::string> ab = {"A", "B"};
+  const PolynomialModel parabola{ab, {{{0, 1}}, {{2, 0}}}, {1.0, -1.0}};   // B − A²
+  const PolynomialModel line{ab, {{{0, 0}}, {{1, 0}}, {{0, 1}}}, {-0.5, -0.5, 1.0}};  // B − A/2 − 1/2
+  const std::vector<Solution> roots =
+      solve_simultaneously({&parabola, &line}, {0.0, 0.0}, {0.0, 0.0}, {0, 1}, {{0.0, 0.8}, {0.0, 0.8}});
+  ASSERT_EQ(roots.size(), 2U);
+  EXPECT_NEAR(roots[0].factors[0], -0.5, 1e-12);
+  EXPECT_NEAR(roots[0].factors[1], 0.25, 1e-12);
+  EXPECT_NEAR(roots[1].factors[0], 1.0, 1e-12);
+  EXPECT_NEAR(roots[1].factors[1], 1.0, 1e-12);
+  EXPECT_EQ(roots[0].outside, std::vector<std::string>{"A"});
+  EXPECT_EQ(roots[1].outside, (std::vector<std::string>{"A", "B"}));
+}
+
 TEST(ResponseSurfaceSolve, ClosedFormCases) {
   const std::vector<std::string> ab = {"A", "B"};
   // Linear in the free factor: one root.

@@ -381,6 +381,14 @@ int run_fit(const FitOptions& options) {
                               {"unit", in.factor_units[i]},
                               {"low", in.ranges[i].low},
                               {"high", in.ranges[i].high}});
+    for (const std::string& spec : options.terms) {
+      if (const auto equals = spec.find('='); equals != std::string::npos) {
+        const std::string response = trimmed(spec.substr(0, equals));
+        if (std::find(options.responses.begin(), options.responses.end(), response) == options.responses.end())
+          throw InputError(fmt::format("--terms {}: '{}' is not a fitted response (name it with --response)", spec,
+                                       response));
+      }
+    }
     j["responses"] = json::array();
     for (const std::string& response : options.responses) {
       for (const auto& fit : fits)
@@ -394,9 +402,6 @@ int run_fit(const FitOptions& options) {
       print_report(fits.back(), unit);
       j["responses"].push_back(fit_json(fits.back(), unit));
     }
-    for (const std::string& spec : options.terms)
-      if (const auto equals = spec.find('='); equals != std::string::npos)
-        fit_of(fits, trimmed(spec.substr(0, equals)), "--terms");
     if (!options.solve.empty()) j["solve"] = solve_and_report(options, in, fits);
     if (!options.json_path.empty()) {
       try {

@@ -223,6 +223,7 @@ TEST_F(DoeFitCli, FitRefusesBadInput) {
            {{"fit", runs, "--factors", "x1,x2", "--response", "yield", "--solve", "yield=80", "--fix", "x9=0"},
             "not one of the factors"},
            {{"fit", runs, "--factors", "x1,x2", "--response", "yield", "--fix", "x1=0"}, "go with --solve"},
+           {{"fit", runs, "--factors", "x1,x2", "--response", "yield", "--terms", "purity=x1"}, "not a fitted response"},
        }) {
     const Result result = run(arguments);
     EXPECT_EQ(result.exit_code, 2) << arguments.back() << ": " << result.output;

@@ -12,7 +12,7 @@ namespace {
 /// ln B(a, b) = ln Γ(a) + ln Γ(b) − ln Γ(a + b).
 double log_beta(double a, double b) { return std::lgamma(a) + std::lgamma(b) - std::lgamma(a + b); }
 
-/// The continued fraction of DLMF 8.17.22,
+/// The continued fraction of DLMF §8.17(v),
 ///   I_x(a,b) = x^a (1−x)^b / (a B(a,b)) · 1 / (1 + d1/(1 + d2/(1 + ...))),
 ///   d_{2m+1} = −(a+m)(a+b+m) x / ((a+2m)(a+2m+1)),   d_{2m} = m(b−m) x / ((a+2m−1)(a+2m)),
 /// evaluated front to back by the modified Lentz method (Thompson & Barnett 1986,

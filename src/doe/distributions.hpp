@@ -1,7 +1,7 @@
 #pragma once
 // The distribution functions that regression statistics need: the regularized incomplete
-// beta function and, from it, the CDFs of Student's t and Fisher's F (DLMF 8.17, 26.5.
-// as used in Abramowitz & Stegun 26.5.27, 26.6.2, 26.7.1). p-values are computed from the
+// beta function (DLMF §8.17) and, from it, the CDFs of Student's t and Fisher's F
+// (Abramowitz & Stegun 26.5.27, 26.6.2, 26.7.1). p-values are computed from the
 // upper tail directly, so a tiny p is not lost to cancellation in 1 - CDF.
 namespace regodem::doe {
 

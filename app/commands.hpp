@@ -1,10 +1,14 @@
 #pragma once
 // The subcommands of `regodem`: main.cpp parses the command line into these options
 // and calls one function; each lives in its own command_*.cpp.
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "io/checkpoint_file.hpp"
+namespace CLI {
+class App;
+}
 
 namespace regodem::app {
 
@@ -55,10 +59,39 @@ struct PlotOptions {
   double section_thickness_m = 0.0;          // 0: cut spheres; > 0: a slab
 };
 
+/// `regodem doe ccd` (command_doe.cpp).
+struct DoeOptions {
+  std::vector<std::string> factors;  // NAME[ [unit]]=CENTRE:STEP
+  std::string alpha = "rotatable";   // rotatable | face | a number
+  int centre_points = 3;
+  bool half_fraction = false;
+  std::string order = "standard";  // standard | random
+  std::uint64_t seed = 1;
+  std::string output_path;  // empty: stdout
+};
+
+/// `regodem fit` (command_fit.cpp).
+struct FitOptions {
+  std::string runs_path;
+  std::string factors;                 // A,B,...
+  std::vector<std::string> responses;  // column names
+  std::vector<std::string> terms;      // "A,B,B^2" for all, or "RESPONSE=A,B,B^2"
+  std::string json_path;               // empty: no JSON
+  std::vector<std::string> solve;      // RESPONSE=TARGET[,RESPONSE=TARGET...]
+  std::vector<std::string> fix;        // FACTOR=VALUE
+  std::vector<std::string> then;       // RESPONSE=TARGET[:FACTOR]
+};
+
+/// Each adds its subcommand (with its options bound to `options`) to `app`.
+CLI::App* add_doe_command(CLI::App& app, DoeOptions& options);
+CLI::App* add_fit_command(CLI::App& app, FitOptions& options);
+
 int run_scenario(const RunOptions& options);
 /// Runs on from a checkpoint into options.output_directory (command_run.cpp).
 int continue_run(const RunOptions& options, const ResumePoint& resume);
 int resume_run(const ResumeOptions& options);
+int run_doe(const DoeOptions& options);
+int run_fit(const FitOptions& options);
 int plot_runs(const PlotOptions& options);
 int validate_scenario(const ValidateOptions& options);
 int print_info();

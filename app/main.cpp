@@ -1,5 +1,6 @@
 // regodem: the command line. Parses the arguments and hands over to one subcommand
-// (command_run.cpp, command_validate.cpp, command_info.cpp).
+// (command_run.cpp, command_validate.cpp, command_info.cpp, command_plot.cpp,
+// command_doe.cpp, command_fit.cpp).
 #include <exception>
 #include <string>
 #include <vector>
@@ -121,6 +122,11 @@ int main(int argc, char** argv) {
       "further CSV (profiles), and section.png with --section; each 960 x 600 pixels. Needs /usr/bin/python3 with\n"
       "matplotlib (REGODEM_PYTHON names another). See docs/outputs.md.");
 
+  DoeOptions doe_options;
+  CLI::App* doe = add_doe_command(app, doe_options);
+  FitOptions fit_options;
+  CLI::App* fit = add_fit_command(app, fit_options);
+
   CLI::App* info = app.add_subcommand(
       "info", "Print the version, build type, compiler, OpenMP threads and library versions");
 
@@ -130,7 +136,7 @@ int main(int argc, char** argv) {
     // CLI11 reports a misspelt subcommand only as "a subcommand is required".
     const std::vector<std::string> unparsed = app.remaining();
     if (app.get_subcommands().empty() && !unparsed.empty() && !unparsed.front().starts_with('-')) {
-      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, resume, validate, plot and info (see regodem --help)\n",
+      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, resume, validate, plot, doe, fit and info (see regodem --help)\n",
                  unparsed.front());
       return exit_status::bad_input;
     }
@@ -151,6 +157,8 @@ int main(int argc, char** argv) {
     if (*validate) return validate_scenario(validate_options);
     if (*info) return print_info();
     if (*plot) return plot_runs(plot_options);
+    if (*doe) return run_doe(doe_options);
+    if (*fit) return run_fit(fit_options);
   } catch (const regodem::InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;

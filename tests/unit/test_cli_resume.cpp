@@ -118,6 +118,14 @@ class CliResume : public ::testing::Test {
   /// (the outputs section holds wall-clock times, which differ).
   static void expect_same_run(const fs::path& a, const fs::path& b) {
     EXPECT_EQ(read_file(a / "time_series.csv"), read_file(b / "time_series.csv"));
+    for (const char* file : {"regions/low.csv", "regions/under_press.csv", "regions/cup_band.csv", "profiles/height.csv"}) {
+      EXPECT_GT(line_count(a / file), 1u) << file;  // a header and samples
+      EXPECT_EQ(read_file(a / file), read_file(b / file)) << file;
+    }
+    const auto measurements = [](const fs::path& dir) {
+      return nlohmann::json::parse(read_file(dir / "summary.json")).at("measurements").dump();
+    };
+    EXPECT_EQ(measurements(a), measurements(b));
     EXPECT_EQ(read_file(a / "particles.pvd"), read_file(b / "particles.pvd"));
     EXPECT_EQ(read_file(a / "walls.pvd"), read_file(b / "walls.pvd"));
     for (const auto& e : fs::directory_iterator(a / "vtk"))
@@ -126,7 +134,7 @@ class CliResume : public ::testing::Test {
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(b / "vtk")) ++vtk_files;
     EXPECT_EQ(vtk_files, static_cast<std::size_t>(std::distance(fs::directory_iterator(a / "vtk"), fs::directory_iterator{})));
     const Checkpoint ca = read_checkpoint_file(newest_checkpoint(a)), cb = read_checkpoint_file(newest_checkpoint(b));
-    for (const char* tag : {"PART", "SIMU", "NBRS", "WALL", "WTHM", "BOND", "RUNP"}) {
+    for (const char* tag : {"PART", "SIMU", "NBRS", "WALL", "WTHM", "BOND", "RUNP", "MEAS"}) {
       const auto body = [&](const Checkpoint& c) {
         for (const CheckpointSection& s : c.sections())
           if (s.tag == tag) return s.body;

@@ -3,19 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-// GCC 12 reports a false -Wmaybe-uninitialized inside its own AVX-512 intrinsics when
-// Eigen is inlined with -march=native (GCC bug 105593), as in thermal/static_bed_solver.cpp.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#include <Eigen/Dense>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "doe/eigen_dense.hpp"
 
 namespace regodem::doe {
 namespace {

@@ -18,6 +18,10 @@ struct WallMotion {
   double start_s = 0.0;
   double stop_s = std::numeric_limits<double>::infinity();
   double max_travel_m = std::numeric_limits<double>::infinity();  // along velocity; the feed then stops
+  // The feed also stops for good once the particles push back against it with this
+  // force (the thrust, -F . feed direction): a piston lowered onto a bed until it
+  // carries a chosen load, a drill at its thrust limit.
+  double max_thrust_N = std::numeric_limits<double>::infinity();
 
   bool active_at(double time_s) const { return time_s >= start_s && time_s < stop_s; }
   bool moves() const { return norm2(velocity_m_per_s) > 0.0 || norm2(angular_velocity_rad_per_s) > 0.0; }

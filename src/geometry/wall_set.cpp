@@ -94,6 +94,10 @@ void WallSet::advance(double time_s, double dt_s) {
     WallBody& body = bodies[b];
     WallMotion& motion = body.motion;
     if (!motion.active_at(time_s) || !motion.moves()) continue;
+    // The force is the last step's: the feed stops before the step after the one on
+    // which the thrust reached its limit.
+    if (norm2(motion.velocity_m_per_s) > 0.0 && -dot(body.force_N, body.feed_direction) >= motion.max_thrust_N)
+      motion.velocity_m_per_s = {};
     // The feed ends on the step that reaches max_travel_m, exactly there.
     Vec3 step = motion.velocity_m_per_s * dt_s;
     const double remaining_m = motion.max_travel_m - body.travel_m;

@@ -20,6 +20,11 @@ nlohmann::ordered_json stage_to_json(const StageSummary& stage) {
   json["result"] = stage.result ? std::string(to_string(*stage.result)) : std::string("not started");
   json["start_time_s"] = number_or_null(stage.start_time_s);
   json["end_time_s"] = number_or_null(stage.end_time_s);
+  // How long it ran in simulated time: a stage that ended on a measurement gives the
+  // time another run must heat for (the matching cell's W0 time).
+  json["duration_s"] = number_or_null(stage.end_time_s && stage.start_time_s
+                                          ? std::optional<double>(*stage.end_time_s - *stage.start_time_s)
+                                          : std::nullopt);
   json["wall_time_s"] = number_or_null(stage.wall_time_s);
   json["message"] = stage.message;
   return json;

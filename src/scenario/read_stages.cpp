@@ -90,6 +90,28 @@ void read_depth_end(const YamlValue& value, StageSpec& stage) {
   stage.depth_m = section->required_quantity("depth", Dimension::length).value_or(0.0);
 }
 
+/// `until: {measurement: w0, quantity: T_in, rises_to: 446.8 K}` (or `falls_to`): until
+/// a region's or band's temperature gets there; `max_duration` bounds the wait. The
+/// measurement's name and kind are checked when the run is built.
+void read_measured_end(const YamlValue& value, const YamlSection& stage_section, StageSpec& stage) {
+  stage.end = StageEnd::measurement;
+  const auto section = value.section();
+  if (!section) return;
+  section->allow_only({"measurement", "quantity", "rises_to", "falls_to"});
+  if (const auto name = section->require("measurement")) stage.until_measurement = name->text().value_or("");
+  if (const auto quantity = section->require("quantity"))
+    stage.until_quantity = quantity->choice({"mean", "min", "max", "T_in", "T_out", "T_d"}).value_or("");
+  if (const auto direction = section->exactly_one_of({"rises_to", "falls_to"})) {
+    stage.until_rising = *direction == "rises_to";
+    stage.until_value_K = section->required_quantity(*direction, Dimension::temperature).value_or(0.0);
+  }
+  if (const auto max_duration = read_checked_quantity(stage_section, "max_duration", Dimension::time,
+                                                      Presence::required, is_positive, "be greater than 0"))
+    stage.max_duration_s = *max_duration;
+}
+
+bool is_measured_end(const YamlValue& until) { return until.node().IsMap() && until.node()["measurement"]; }
+
 const std::vector<std::string> kStaticStageKeys{"thermal_time_step", "stability_fraction"};
 
 bool is_fraction_of_one(double value) { return value > 0.0 && value <= 1.0; }
@@ -114,10 +136,11 @@ void read_heat_stepping(const YamlSection& section, const ScenarioReferences& re
                      : "a static-bed stage only moves heat, but heat transfer is off: add a top-level "
                        "`heat:` section (e.g. `heat: {}`)");
   }
-  if (section.has("until")) {
+  if (section.has("until") && !is_measured_end(*section.get("until"))) {
     section.get("until")->error(fmt::format(
-        "a static-bed stage ({}) does not move particles, so it cannot wait for them to settle: "
-        "give its 'duration'",
+        "a static-bed stage ({}) does not move particles, so it cannot wait for them to settle or for a "
+        "depth: give its 'duration', or wait for a measurement (until: {{measurement: ..., quantity: ..., "
+        "rises_to: ...}})",
         *method));
   }
   if (section.has("overrides")) {
@@ -145,6 +168,7 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
   if (!section) return stage;
   const auto until = section->get("until");
   const bool settled = until && !until->node().IsMap();
+  const bool measured = until && is_measured_end(*until);
   // Judged from the text so that the keys can be checked before the value is.
   const auto stepping = section->get("heat_stepping");
   const bool frozen = stepping && stepping->node().IsScalar() &&
@@ -152,7 +176,7 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
   std::vector<std::string> allowed{"name", "duration", "until", "overrides", "heat_stepping", "form_bonds"};
   std::vector<std::pair<std::string, std::string>> misplaced;
   for (const std::string& key : kSettledKeys) {
-    if (settled) {
+    if (settled || (measured && key == "max_duration")) {
       allowed.push_back(key);
     } else {
       misplaced.emplace_back(key, until ? "only with 'until: settled'; a stage that ends at a depth takes none"
@@ -178,7 +202,9 @@ StageSpec read_stage(const YamlValue& item, const ScenarioReferences& references
                                              "be greater than 0")
                            .value_or(0.0);
   } else if (end_key && *end_key == "until") {
-    if (until->node().IsMap())
+    if (measured)
+      read_measured_end(*until, *section, stage);
+    else if (until->node().IsMap())
       read_depth_end(*until, stage);
     else if (until->choice({"settled"}))
       read_settled_end(*section, stage);

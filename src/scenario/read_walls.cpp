@@ -86,7 +86,7 @@ void read_motion(const YamlValue& value, WallSpec& wall) {
   const auto section = value.section();
   if (!section) return;
   section->allow_only({"velocity", "angular_velocity", "axis", "axis_point", "start", "stop", "stop_at_depth",
-                       "depth_at_start"});
+                       "stop_at_thrust", "depth_at_start"});
   MotionSpec& motion = wall.motion;
   motion.velocity_m_per_s = section->vector("velocity", Dimension::velocity).value_or(Vec3{});
   motion.axis_point_m = section->vector("axis_point", Dimension::length).value_or(wall.point_m);
@@ -145,6 +145,14 @@ void read_motion(const YamlValue& value, WallSpec& wall) {
         stop_depth->error(fmt::format("must be deeper than 'depth_at_start' ({} m)", motion.depth_at_start_m));
       else
         motion.stop_at_depth_m = *depth;
+    }
+  }
+  if (const auto stop_thrust = section->get("stop_at_thrust")) {
+    if (norm(motion.velocity_m_per_s) == 0.0) {
+      stop_thrust->error("the thrust is the particles' force against 'velocity' (the feed); give the wall a velocity");
+    } else if (const auto thrust = read_checked_quantity(*section, "stop_at_thrust", Dimension::force,
+                                                         Presence::required, is_positive, "be greater than 0")) {
+      motion.stop_at_thrust_N = *thrust;
     }
   }
 }

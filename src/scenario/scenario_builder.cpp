@@ -141,6 +141,35 @@ int fed_wall_index(const WallSet& walls, const std::string& name, const SourceLo
   return static_cast<int>(named - walls.bodies.begin());
 }
 
+/// A stage's `until: {measurement, quantity, ...}`: the measurement must exist, be a
+/// region or a band, and have the quantity asked for; a band needs heat on to mean anything.
+MeasurementTarget measurement_target(const StageSpec& st, const MeasurementPlan& plan) {
+  const auto named = std::find_if(plan.items.begin(), plan.items.end(),
+                                  [&](const Measurement& m) { return m.name == st.until_measurement; });
+  const std::string who = fmt::format("stage '{}'", st.name);
+  if (named == plan.items.end())
+    fail(st.where, fmt::format("{} waits for measurement '{}', but no region or band has that name", who,
+                               st.until_measurement));
+  const bool band_quantity = st.until_quantity.starts_with("T_");
+  if (named->kind == MeasurementKind::profile)
+    fail(st.where, fmt::format("{} waits for '{}', a profile: wait for a region or a band", who, named->name));
+  if (band_quantity != (named->kind == MeasurementKind::band))
+    fail(st.where, fmt::format("{} waits for {} of '{}', a {}: a band gives T_in, T_out or T_d, a region mean, min or max",
+                               who, st.until_quantity, named->name,
+                               named->kind == MeasurementKind::band ? "band" : "region"));
+  MeasurementTarget target;
+  target.measurement = static_cast<std::size_t>(named - plan.items.begin());
+  target.quantity = st.until_quantity == "mean"    ? MeasuredQuantity::mean
+                    : st.until_quantity == "min"   ? MeasuredQuantity::min
+                    : st.until_quantity == "max"   ? MeasuredQuantity::max
+                    : st.until_quantity == "T_in"  ? MeasuredQuantity::T_in
+                    : st.until_quantity == "T_out" ? MeasuredQuantity::T_out
+                                                   : MeasuredQuantity::T_d;
+  target.rising = st.until_rising;
+  target.value_K = st.until_value_K;
+  return target;
+}
+
 /// The body of a wall named in the scenario (a sieve's: its first segment; they move as one).
 int wall_body_index(const WallSet& walls, const std::string& name, const SourceLocation& where) {
   for (std::size_t b = 0; b < walls.bodies.size(); ++b)
@@ -188,6 +217,7 @@ WallMotion wall_motion(const WallSpec& w) {
   m.start_s = w.motion.start_s;
   m.stop_s = w.motion.stop_s;
   m.max_travel_m = w.motion.stop_at_depth_m - w.motion.depth_at_start_m;  // infinite without a stop depth
+  m.max_thrust_N = w.motion.stop_at_thrust_N;
   // A mesh turns as a rigid body about any axis.
   if (norm2(m.angular_velocity_rad_per_s) == 0.0 || w.mesh) return m;
   // Analytic shapes may only spin about their own symmetry axis (their shape then
@@ -709,12 +739,15 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   configure_bonds(spec, *impl.simulation, lines);
   if (initial) {
     try {
-      impl.simulation->adopt_particles(*initial, initial_materials);
+      impl.simulation->adopt_particles(*initial, initial_materials, spec.initial_state_temperature_K);
     } catch (const CheckpointError& e) {
       fail(spec.initial_state_where, e.what());
     }
   }
 
+  // Built before the stages, which may end on a measurement; described after them.
+  std::vector<std::string> measurement_lines;
+  impl.plan.measurements = measurement_plan(spec.measurements, impl.simulation->walls, measurement_lines);
   for (const StageSpec& st : spec.stages) {
     Stage stage;
     stage.name = st.name;
@@ -728,6 +761,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                                         fmt::format("stage '{}'", st.name));
       stage.depth_m = st.depth_m;
     }
+    if (st.end == StageEnd::measurement) stage.until_measured = measurement_target(st, impl.plan.measurements);
     for (const OverrideSpec& o : st.overrides) {
       PairOverride po;
       if (!o.material_a.empty()) {
@@ -743,15 +777,23 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     stage.heat_stepping = heat_stepping(st.heat_stepping);
     stage.thermal_time_step_s = st.thermal_time_step_s;
     stage.stability_fraction = st.stability_fraction;
+    const std::string measured_end =
+        stage.ends_on_measurement()
+            ? fmt::format("until '{}' {} {} {:.6g} K, at most {:.4g} s", st.until_measurement, st.until_quantity,
+                          st.until_rising ? "rises to" : "falls to", st.until_value_K, stage.max_duration_s)
+            : "";
     if (stage.freezes_mechanics())
-      lines.push_back(fmt::format("stage '{}': {:.4g} s, static bed (mechanics frozen), heat by {}, thermal step {}",
-                                  stage.name, stage.duration_s, heat_method_name(stage.heat_stepping),
+      lines.push_back(fmt::format("stage '{}': {}, static bed (mechanics frozen), heat by {}, thermal step {}",
+                                  stage.name,
+                                  stage.ends_on_measurement() ? measured_end : fmt::format("{:.4g} s", stage.duration_s),
+                                  heat_method_name(stage.heat_stepping),
                                   stage.thermal_time_step_s > 0.0
                                       ? fmt::format("{:.4g} s", stage.thermal_time_step_s)
                                       : fmt::format("{:.3g} x the explicit stability limit",
                                                     stage.default_step_in_stability_limits())));
     else
-      lines.push_back(stage.ends_at_depth()
+      lines.push_back(stage.ends_on_measurement() ? fmt::format("stage '{}': {}", stage.name, measured_end)
+                      : stage.ends_at_depth()
                           ? fmt::format("stage '{}': until wall '{}' reaches a depth of {:.4g} m", stage.name,
                                         st.depth_wall, stage.depth_m)
                       : stage.until_settled
@@ -788,7 +830,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   if (spec.measurements.thermal_history && spec.heat.enabled)
     lines.push_back(fmt::format("thermal history: peak temperature and time above {:.5g} K of every particle",
                                 spec.measurements.thermal_history_threshold_K));
-  impl.plan.measurements = measurement_plan(spec.measurements, impl.simulation->walls, lines);
+  lines.insert(lines.end(), measurement_lines.begin(), measurement_lines.end());
   impl.plan.seed = spec.seed;
   return run;
 }

@@ -108,7 +108,15 @@ void read_initial_state(const YamlSection& root, const ScenarioReferences& refer
   if (!value) return;
   const auto section = value->section();
   if (!section) return;
-  section->allow_only({"checkpoint"});
+  section->allow_only({"checkpoint", "temperature"});
+  if (section->has("temperature")) {
+    if (!references.heat_enabled)
+      section->get("temperature")->error("a starting temperature needs heat on: add a top-level `heat:` section");
+    else
+      spec.initial_state_temperature_K = read_checked_quantity(*section, "temperature", Dimension::temperature,
+                                                               Presence::required, is_positive,
+                                                               "be above absolute zero");
+  }
   const auto checkpoint = section->get("checkpoint");
   if (!checkpoint) {
     section->error("initial_state needs `checkpoint`: a checkpoint file or a run's output directory");

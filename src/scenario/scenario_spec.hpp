@@ -87,6 +87,7 @@ struct MotionSpec {
   // stops when the depth reaches stop_at_depth_m (rotation goes on until stop_s).
   double depth_at_start_m = 0.0;
   double stop_at_depth_m = std::numeric_limits<double>::infinity();
+  double stop_at_thrust_N = std::numeric_limits<double>::infinity();  // the feed stops at this thrust
 };
 
 /// Where a mesh goes: x -> R(axis, angle) (scale x) + translation.
@@ -233,7 +234,7 @@ struct OverrideSpec {
   SourceLocation where;
 };
 
-enum class StageEnd { time, settled, depth };
+enum class StageEnd { time, settled, depth, measurement };
 
 /// How a stage moves heat. coupled: with the mechanics, every step. The others freeze the
 /// mechanics (particles do not move) and advance temperatures alone on the contact
@@ -254,6 +255,12 @@ struct StageSpec {
   // end == depth: until wall `depth_wall` has reached `depth_m` (its motion's depth).
   std::string depth_wall;
   double depth_m = 0.0;
+  // end == measurement: until measurement `until_measurement`'s `until_quantity` (mean,
+  // min, max of a region; T_in, T_out, T_d of a band) rises (or falls) to the value,
+  // within max_duration_s.
+  std::string until_measurement, until_quantity;
+  bool until_rising = true;
+  double until_value_K = 0.0;
   std::vector<OverrideSpec> overrides;
   ThermalStepping heat_stepping = ThermalStepping::coupled;
   double thermal_time_step_s = 0.0;   // static modes; 0 = stability_fraction x the explicit limit
@@ -337,6 +344,7 @@ struct ScenarioSpec {
   // initial_state.checkpoint: a checkpoint file, or a run's output directory (its newest
   // checkpoint), whose particles, contacts, bonds and temperatures the run starts with.
   std::string initial_state_checkpoint;  // absolute; empty: none
+  std::optional<double> initial_state_temperature_K;  // every adopted particle starts at it
   SourceLocation initial_state_where;
 };
 

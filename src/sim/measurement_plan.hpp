@@ -39,6 +39,17 @@ struct Measurement {
   MeasurementSchedule schedule;
 };
 
+/// What a stage may wait for (`until: {measurement, quantity, rises_to | falls_to}`):
+/// a region's mean, min or max temperature, or a band's T_in, T_out or T_d.
+enum class MeasuredQuantity { mean, min, max, T_in, T_out, T_d };
+
+struct MeasurementTarget {
+  std::size_t measurement = 0;  // index into MeasurementPlan::items
+  MeasuredQuantity quantity = MeasuredQuantity::mean;
+  bool rising = true;           // ends once the value is >= value_K (falling: <=)
+  double value_K = 0.0;
+};
+
 struct MeasurementPlan {
   std::vector<Measurement> items;
   bool empty() const { return items.empty(); }

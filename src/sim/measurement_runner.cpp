@@ -65,6 +65,23 @@ MeasurementTable measurement_table(const Measurement& m, const Simulation& sim) 
   return table;
 }
 
+double measured_value(const Measurement& m, const Simulation& sim, MeasuredQuantity quantity) {
+  const Vec3 offset = offset_of(sim, m);
+  if (m.kind == MeasurementKind::band) {
+    const BandTemperatures b = band_temperatures(sim.particles, m.band_in, m.band_out, offset);
+    return quantity == MeasuredQuantity::T_in    ? b.in.mean_K
+           : quantity == MeasuredQuantity::T_out ? b.out.mean_K
+                                                 : b.difference_K();
+  }
+  const TemperatureStatistics s = region_statistics(sim.particles, m.region, offset);
+  return quantity == MeasuredQuantity::min ? s.min_K : quantity == MeasuredQuantity::max ? s.max_K : s.mean_K;
+}
+
+bool target_reached(const MeasurementPlan& plan, const MeasurementTarget& target, const Simulation& sim) {
+  const double value = measured_value(plan.items[target.measurement], sim, target.quantity);
+  return target.rising ? value >= target.value_K : value <= target.value_K;
+}
+
 std::vector<std::vector<double>> measurement_rows(const Measurement& m, const Simulation& sim) {
   const bool heat = sim.heat_enabled();
   const Vec3 offset = offset_of(sim, m);

@@ -16,6 +16,12 @@ MeasurementTable measurement_table(const Measurement& m, const Simulation& sim);
 /// The rows of one sample of the measurement (one; one per bin for a profile).
 std::vector<std::vector<double>> measurement_rows(const Measurement& m, const Simulation& sim);
 
+/// The current value of one quantity of a region or band (NaN when it holds no
+/// particle): one pass over the particles.
+double measured_value(const Measurement& m, const Simulation& sim, MeasuredQuantity quantity);
+/// Whether a stage's measured end condition holds now (never for a NaN value).
+bool target_reached(const MeasurementPlan& plan, const MeasurementTarget& target, const Simulation& sim);
+
 /// Time-series columns of the thermal history (none unless the run tracks it): the
 /// highest peak temperature, the fraction of particles whose peak went above the
 /// threshold, the mean time above it.

@@ -2,6 +2,7 @@
 // The simulation state and its time step: particles, materials, walls, neighbour
 // lists, and the velocity-Verlet integrator around one contact pass per step.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -160,7 +161,10 @@ class Simulation {
   /// A new run's start from another run's checkpoint: its particles, their temperatures,
   /// contact history between particles, and bonds (simulation_checkpoint.cpp).
   /// `material_of_saved`: this run's material index for each saved one.
-  void adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved);
+  /// With a temperature, every adopted particle starts at it (a bed built without heat),
+  /// its thermal history from there.
+  void adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved,
+                       std::optional<double> temperature_K = std::nullopt);
 
   ParticleStore particles;
   MaterialTable materials;

@@ -428,7 +428,8 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
   }
 }
 
-void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved) {
+void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved,
+                                 std::optional<double> temperature_K) {
   if (!particles.empty())
     throw CheckpointError(fmt::format("particles from checkpoint '{}' must come before any other", checkpoint.source));
   {
@@ -442,6 +443,11 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
       throw CheckpointError(fmt::format("checkpoint '{}': particle {} has material {} of {}", checkpoint.source,
                                         particles.id[i], m, material_of_saved.size()));
     m = material_of_saved[m];
+    if (temperature_K) {
+      particles.temperature_K[i] = *temperature_K;
+      if (i < particles.peak_temperature_K.size()) particles.peak_temperature_K[i] = *temperature_K;
+      if (i < particles.time_above_threshold_s.size()) particles.time_above_threshold_s[i] = 0.0;
+    }
     particles.conductivity_W_per_mK[i] = materials[m].conductivity_W_per_mK.at(particles.temperature_K[i]);
     if (heat_enabled()) ledger_.reference_energy_J += particle_thermal_energy_J(i);
   }

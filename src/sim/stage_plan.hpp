@@ -43,9 +43,14 @@ struct Stage {
   int depth_body = -1;
   double depth_m = 0.0;
   bool ends_at_depth() const { return depth_body >= 0; }
+  // Ends when a measurement reaches a value, at most max_duration_s after its start
+  // (else the run fails); checked every step of a static-bed stage, every 64 of a coupled one.
+  std::optional<MeasurementTarget> until_measured;
+  bool ends_on_measurement() const { return until_measured.has_value(); }
   std::vector<PairOverride> overrides;
   // Static-bed stages (anything but coupled) freeze the mechanics: particles and walls
-  // stay put and only temperatures advance, with their own step. They end by time.
+  // stay put and only temperatures advance, with their own step. They end by time or
+  // on a measurement.
   HeatStepping heat_stepping = HeatStepping::coupled;
   double thermal_time_step_s = 0.0;  // 0: stability_fraction x the explicit limit
   double stability_fraction = 0.5;

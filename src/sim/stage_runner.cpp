@@ -85,6 +85,15 @@ bool feed_ended(const Simulation& sim, const Stage& stage) {
   return norm2(motion.velocity_m_per_s) == 0.0 || sim.time_s() >= motion.stop_s;
 }
 
+std::string measurement_not_reached(const Simulation& sim, const StagePlan& plan, const Stage& stage) {
+  const MeasurementTarget& target = *stage.until_measured;
+  const Measurement& m = plan.measurements.items[target.measurement];
+  return fmt::format(
+      "stage '{}' ended at its max_duration of {:.6g} s before '{}' {} {:.6g} K: it is {:.6g} K. Raise max_duration.",
+      stage.name, stage.max_duration_s, m.name, target.rising ? "rose to" : "fell to", target.value_K,
+      measured_value(m, sim, target.quantity));
+}
+
 bool reached_depth(const Simulation& sim, const Stage& stage) {
   return sim.walls.bodies[static_cast<std::size_t>(stage.depth_body)].depth_m() >= stage.depth_m * (1.0 - 1e-12);
 }
@@ -242,10 +251,11 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     info.count = plan.stages.size();
     info.start_time_s = inside ? inside->stage_start_time_s : sim.time_s();
     info.ends_when_settled = stage.until_settled;
-    info.planned_end_time_s = inside ? inside->planned_end_time_s
-                                     : info.start_time_s + (stage.ends_at_depth()   ? time_to_depth_s(sim, stage)
-                                                            : stage.until_settled ? stage.max_duration_s
-                                                                                  : stage.duration_s);
+    info.planned_end_time_s =
+        inside ? inside->planned_end_time_s
+               : info.start_time_s + (stage.ends_at_depth()                                    ? time_to_depth_s(sim, stage)
+                                      : stage.until_settled || stage.ends_on_measurement() ? stage.max_duration_s
+                                                                                           : stage.duration_s);
     observer.stage_started(info);
     const MaterialTable original_pairs = apply_overrides(sim, stage.overrides);
     if (inside) sim.restore_state(resume->checkpoint);
@@ -281,22 +291,24 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       result = StageResult::failed;
     }
     const double step_s = frozen ? frozen->time_step_s() : dt;
-    const double stage_end_s = info.start_time_s + stage.duration_s;
+    const double stage_end_s =
+        info.start_time_s + (stage.ends_on_measurement() ? stage.max_duration_s : stage.duration_s);
     const std::uint64_t check_every = frozen ? 1 : kCheckEverySteps;
-    const bool ends_by_time = !stage.until_settled && !stage.ends_at_depth();
+    const bool ends_by_time = !stage.until_settled && !stage.ends_at_depth() && !stage.ends_on_measurement();
     const std::uint64_t planned_steps =
         inside                ? inside->planned_steps
         : stage.ends_at_depth() ? static_cast<std::uint64_t>(std::ceil(time_to_depth_s(sim, stage) / dt))
-        : stage.until_settled ? 0
+        : stage.until_settled || stage.ends_on_measurement() ? 0
         : frozen            ? static_cast<std::uint64_t>(std::ceil(stage.duration_s / step_s - 1e-9))
                             : static_cast<std::uint64_t>(std::llround(stage.duration_s / dt));
     const std::uint64_t min_steps = static_cast<std::uint64_t>(std::llround(stage.min_duration_s / dt));
     const double max_steps_d = stage.max_duration_s / dt;
     double sample_interval = plan.sample_interval_s;
     if (sample_interval <= 0.0)
-      sample_interval = stage.until_settled    ? 0.01
-                        : stage.ends_at_depth() ? std::max(time_to_depth_s(sim, stage), dt) / 100.0
-                                                : stage.duration_s / 100.0;
+      sample_interval = stage.until_settled          ? 0.01
+                        : stage.ends_at_depth()       ? std::max(time_to_depth_s(sim, stage), dt) / 100.0
+                        : stage.ends_on_measurement() ? stage.max_duration_s / 100.0
+                                                      : stage.duration_s / 100.0;
     sample_interval = std::max(sample_interval, step_s);  // a zero-length stage still samples once
     if (inside) sample_interval = inside->sample_interval_s;
     double next_sample_s = inside ? inside->next_sample_s : sim.time_s();
@@ -354,7 +366,15 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
 
         if (ends_by_time && done >= planned_steps) break;
         if (stage.ends_at_depth() && reached_depth(sim, stage)) break;
+        if (stage.ends_on_measurement() && done % check_every == 0 &&
+            target_reached(plan.measurements, *stage.until_measured, sim))
+          break;
         if (done % check_every == 0) {
+          if (stage.ends_on_measurement() && !frozen && static_cast<double>(done) >= max_steps_d) {
+            failure = measurement_not_reached(sim, plan, stage);
+            result = StageResult::failed;
+            break;
+          }
           if (stage.until_settled && insertions_done && done >= min_steps &&
               kinetic_energy_per_particle(sim) < stage.settled_kinetic_energy_J)
             break;
@@ -401,14 +421,20 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             const double steps_left = stage.ends_at_depth() ? time_to_depth_s(sim, stage) / dt
                                                             : static_cast<double>(planned_steps) - static_cast<double>(done);
             snap.estimated_remaining_s =
-                stage.until_settled || stage_rate <= 0.0 || std::isinf(steps_left) ? -1.0 : steps_left / stage_rate;
+                stage.until_settled || stage.ends_on_measurement() || stage_rate <= 0.0 || std::isinf(steps_left) ? -1.0 : steps_left / stage_rate;
             snap.kinetic_energy_per_particle_J = kinetic_energy_per_particle(sim);
             observer.progress(snap);
           }
         }
         if (frozen) {
           const double remaining_s = stage_end_s - sim.time_s();
-          if (remaining_s <= 0.0) break;
+          if (remaining_s <= 0.0) {
+            if (stage.ends_on_measurement()) {
+              failure = measurement_not_reached(sim, plan, stage);
+              result = StageResult::failed;
+            }
+            break;
+          }
           frozen->advance(std::min(step_s, remaining_s));
         } else {
           sim.step();

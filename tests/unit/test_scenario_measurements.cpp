@@ -208,3 +208,64 @@ TEST(ScenarioMeasurements, HeatOffRefusesTheThermalHistory) {
 
 }  // namespace
 }  // namespace regodem
+
+namespace regodem {
+namespace {
+
+// `until: {measurement, quantity, rises_to | falls_to}` with `max_duration`: read, and
+// resolved by the builder to the measurement's index; a wrong name, a quantity the
+// measurement does not have, a profile, no bound, two directions: refused.
+const std::string kDrillStage = "  - {name: drill, duration: 1 s}";
+
+std::string with_stage(const std::string& stage) {
+  std::string text = kBase + kMeasurements;
+  text.replace(text.find(kDrillStage), kDrillStage.size(), stage);
+  return text;
+}
+
+TEST(ScenarioMeasurements, StageEndsWhenABandOrRegionReachesAValue) {
+  const PreparedRun run = PreparedRun::build(
+      read_scenario_string(with_stage("  - {name: drill, until: {measurement: w0, quantity: T_in, rises_to: 446.8 K},"
+                                      " max_duration: 5 s}"),
+                           kFile),
+      1);
+  const Stage& stage = run.plan().stages.at(0);
+  ASSERT_TRUE(stage.ends_on_measurement());
+  EXPECT_EQ(run.plan().measurements.items[stage.until_measured->measurement].name, "w0");
+  EXPECT_EQ(stage.until_measured->quantity, MeasuredQuantity::T_in);
+  EXPECT_TRUE(stage.until_measured->rising);
+  EXPECT_DOUBLE_EQ(stage.until_measured->value_K, 446.8);
+  EXPECT_DOUBLE_EQ(stage.max_duration_s, 5.0);
+
+  const PreparedRun falling = PreparedRun::build(
+      read_scenario_string(with_stage("  - {name: drill, until: {measurement: chip, quantity: max, falls_to: -70 degC},"
+                                      " max_duration: 5 s}"),
+                           kFile),
+      1);
+  EXPECT_FALSE(falling.plan().stages.at(0).until_measured->rising);
+  EXPECT_NEAR(falling.plan().stages.at(0).until_measured->value_K, 203.15, 1e-9);
+}
+
+TEST(ScenarioMeasurements, StageEndOnAMeasurementIsChecked) {
+  const auto problem = [](const std::string& stage, const std::string& fragment) {
+    const std::string message = error_of(with_stage(stage));
+    EXPECT_NE(message.find(fragment), std::string::npos) << "expected '" << fragment << "' in: " << message;
+  };
+  problem("  - {name: drill, until: {measurement: nowhere, quantity: T_in, rises_to: 300 K}, max_duration: 5 s}",
+          "no region or band has that name");
+  problem("  - {name: drill, until: {measurement: chip, quantity: T_in, rises_to: 300 K}, max_duration: 5 s}",
+          "a band gives T_in, T_out or T_d, a region mean, min or max");
+  problem("  - {name: drill, until: {measurement: w0, quantity: mean, rises_to: 300 K}, max_duration: 5 s}",
+          "a band gives T_in, T_out or T_d");
+  problem("  - {name: drill, until: {measurement: axial, quantity: mean, rises_to: 300 K}, max_duration: 5 s}",
+          "a profile");
+  problem("  - {name: drill, until: {measurement: w0, quantity: T_in, rises_to: 300 K}}", "max_duration");
+  problem("  - {name: drill, until: {measurement: w0, quantity: T_in, rises_to: 300 K, falls_to: 200 K},"
+          " max_duration: 5 s}",
+          "give only one of 'rises_to' or 'falls_to'");
+  problem("  - {name: drill, until: {measurement: w0, quantity: T_up, rises_to: 300 K}, max_duration: 5 s}",
+          "T_up");
+}
+
+}  // namespace
+}  // namespace regodem

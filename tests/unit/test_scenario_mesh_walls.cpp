@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -142,6 +143,9 @@ TEST_F(MeshScenario, StageEndsAtTheDrillDepth) {
   ASSERT_EQ(sim.walls.meshes.size(), 1u);
   EXPECT_NEAR(sim.walls.bodies[0].motion.max_travel_m, 4e-3, 1e-18);
   EXPECT_TRUE(run.plan().stages[0].ends_at_depth());
+  EXPECT_TRUE(std::isinf(sim.walls.bodies[0].motion.max_thrust_N));  // no thrust limit unless given
+  PreparedRun limited = PreparedRun::build(read("stop_at_depth: 3 mm", "stop_at_depth: 3 mm\n      stop_at_thrust: 0.25 N"), 1);
+  EXPECT_DOUBLE_EQ(limited.simulation().walls.bodies[0].motion.max_thrust_N, 0.25);
   struct Columns : RunObserver {
     std::vector<std::string> names;
     void columns(const std::vector<SeriesColumn>& c) override {
@@ -198,6 +202,9 @@ TEST_F(MeshScenario, BadInputIsReportedAtItsKey) {
   EXPECT_NE(error_of("stop_at_depth: 3 mm", "stop_at_depth: -2 mm").find("deeper than 'depth_at_start'"),
             std::string::npos);
   EXPECT_NE(error_of("velocity: [0, 0, -1 mm/s]", "velocity: [0, 0, 0]").find("give the wall a velocity"),
+            std::string::npos);
+  EXPECT_NE(error_of("stop_at_depth: 3 mm", "stop_at_thrust: -2 N").find("greater than 0"), std::string::npos);
+  EXPECT_NE(error_of("stop_at_depth: 3 mm", "stop_at_thrust: 2 mm").find("walls.plate.motion.stop_at_thrust"),
             std::string::npos);
   EXPECT_NE(error_of("until: {wall: plate, depth: 2 mm}", "until: {wall: drill, depth: 2 mm}")
                 .find("no wall named 'drill'"),

@@ -103,13 +103,17 @@ void read_reference(const YamlSection& root, const std::string& base, Calibratio
   }
 }
 
-void read_factors(const YamlSection& root, CalibrationSpec& spec) {
-  const auto value = root.require("factors");
-  if (!value) return;
+/// The items of a list that must have at least one.
+std::vector<YamlValue> required_items(const YamlSection& root, std::string_view key, std::string_view what) {
+  const auto value = root.require(key);
+  if (!value) return {};
   const auto items = value->items();
-  if (!items) return;
-  if (items->empty()) value->error("give at least one factor");
-  for (const YamlValue& item : *items) {
+  if (items && items->empty()) value->error(fmt::format("give at least one {}", what));
+  return items.value_or(std::vector<YamlValue>{});
+}
+
+void read_factors(const YamlSection& root, CalibrationSpec& spec) {
+  for (const YamlValue& item : required_items(root, "factors", "factor")) {
     const auto entry = item.section();
     if (!entry) continue;
     entry->allow_only({"name", "set", "centre", "step", "unit"});
@@ -184,14 +188,9 @@ void read_target(const YamlValue& value, doe::CalibrationResponse& response) {
 }
 
 void read_responses(const YamlSection& root, CalibrationSpec& spec) {
-  const auto value = root.require("responses");
-  if (!value) return;
-  const auto items = value->items();
-  if (!items) return;
-  if (items->empty()) value->error("give at least one response");
   std::vector<std::string> factor_names;
   for (const auto& f : spec.factors) factor_names.push_back(f.design.name);
-  for (const YamlValue& item : *items) {
+  for (const YamlValue& item : required_items(root, "responses", "response")) {
     const auto entry = item.section();
     if (!entry) continue;
     entry->allow_only({"name", "value", "unit", "target", "terms"});
@@ -290,21 +289,19 @@ void read_solve(const YamlSection& root, CalibrationSpec& spec) {
                     spec.responses.size(), free_factors));
 }
 
+/// A whole number of 1 or more under `key`, if given.
+std::optional<int> read_count(const YamlSection& root, std::string_view key) {
+  const auto value = root.get(key);
+  if (!value) return std::nullopt;
+  const auto n = value->whole_number();
+  if (n && *n >= 1) return static_cast<int>(*n);
+  if (n) value->error("must be at least 1");
+  return std::nullopt;
+}
+
 void read_runs(const YamlSection& root, CalibrationSpec& spec) {
-  if (const auto value = root.get("processes")) {
-    const auto n = value->whole_number();
-    if (n && *n >= 1)
-      spec.processes = static_cast<int>(*n);
-    else if (n)
-      value->error("must be at least 1");
-  }
-  if (const auto value = root.get("threads_per_run")) {
-    const auto n = value->whole_number();
-    if (n && *n >= 1)
-      spec.threads_per_run = static_cast<int>(*n);
-    else if (n)
-      value->error("must be at least 1");
-  }
+  spec.processes = read_count(root, "processes").value_or(spec.processes);
+  spec.threads_per_run = read_count(root, "threads_per_run").value_or(spec.threads_per_run);
 }
 
 }  // namespace
@@ -312,13 +309,7 @@ void read_runs(const YamlSection& root, CalibrationSpec& spec) {
 doe::CalibrationSpec read_calibration_string(const std::string& yaml_text, const std::string& file_name_for_messages) {
   ScenarioReadContext context;
   context.file = file_name_for_messages;
-  YAML::Node tree;
-  try {
-    tree = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& problem) {
-    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", file_name_for_messages, problem.mark.line + 1,
-                                 problem.mark.column + 1, problem.msg));
-  }
+  const YAML::Node tree = load_yaml(yaml_text, file_name_for_messages);
   CalibrationSpec spec;
   spec.file = file_name_for_messages;
   const YamlValue top(context, tree, tree.Mark(), "", "");

@@ -165,7 +165,12 @@ class RunBatches {
                       to_run[j]->description.empty() ? "" : ": " + to_run[j]->description));
     };
     events.finished = [&](std::size_t j, const ChildResult& result) {
-      if (result.exit_code != 0) return;
+      if (result.exit_code != 0) {
+        say(fmt::format("[{}/{}] {} {} after {} (exit status {})", to_run[j]->number, total_, to_run[j]->name,
+                        result.exit_code == exit_status::interrupted ? "stopped" : "FAILED",
+                        format_wall_duration(result.wall_s), result.exit_code));
+        return;
+      }
       ++finished_;
       ++ran_;
       run_wall_s_ += result.wall_s;

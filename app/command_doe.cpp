@@ -54,26 +54,6 @@ doe::CcdOptions design_options(const DoeOptions& options) {
   return ccd;
 }
 
-/// `name [unit]` as RegoDEM's CSV headers write it.
-std::string header_name(const doe::DesignFactor& factor) {
-  return factor.unit.empty() ? factor.name : fmt::format("{} [{}]", factor.name, factor.unit);
-}
-
-std::string design_csv(const doe::CentralCompositeDesign& design) {
-  std::string text = "run,std_order,point_type";
-  for (const auto& factor : design.factors) text += fmt::format(",{}_coded", factor.name);
-  for (const auto& factor : design.factors) text += "," + header_name(factor);
-  text += "\n";
-  for (std::size_t r = 0; r < design.runs.size(); ++r) {
-    const doe::DesignPoint& point = design.runs[r];
-    text += fmt::format("{},{},{}", r + 1, point.standard_order, doe::point_type_name(point.type));
-    for (const double v : point.coded) text += fmt::format(",{}", v);  // shortest text that reads back exactly
-    for (const double v : point.actual) text += fmt::format(",{}", v);
-    text += "\n";
-  }
-  return text;
-}
-
 }  // namespace
 
 CLI::App* add_doe_command(CLI::App& app, DoeOptions& options) {
@@ -113,7 +93,7 @@ int run_doe(const DoeOptions& options) {
     std::vector<doe::DesignFactor> factors;
     for (const std::string& text : options.factors) factors.push_back(parse_factor(text));
     const doe::CentralCompositeDesign design = doe::make_central_composite_design(factors, design_options(options));
-    const std::string csv = design_csv(design);
+    const std::string csv = doe::design_csv(design);
     const std::string summary =
         fmt::format("central composite design: {} factor{}, α = {:.6g}; {} factorial + {} axial + {} centre = {} runs",
                     factors.size(), factors.size() == 1 ? "" : "s", design.alpha, design.factorial_points,

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "fit_report.hpp"
 #include "core/error.hpp"
 #include "doe/polynomial_model.hpp"
 #include "doe/response_surface_fit.hpp"
@@ -76,78 +77,6 @@ std::vector<doe::Term> terms_for(const FitOptions& options, const std::string& r
   return doe::full_quadratic_terms(factor_names.size());
 }
 
-std::string number(double value, int digits = 6) {
-  if (std::isnan(value)) return "n/a";
-  return fmt::format("{:.{}g}", value, digits);
-}
-
-std::string p_text(double p) {
-  if (std::isnan(p)) return "";
-  return p < 1e-4 ? "< 0.0001" : fmt::format("{:.4f}", p);
-}
-
-void print_report(const doe::ResponseSurfaceFit& fit, const std::string& unit) {
-  const std::string title = unit.empty() ? fit.response_name : fmt::format("{} [{}]", fit.response_name, unit);
-  fmt::print("Response {}: {} runs, {} terms, {} residual degrees of freedom\n", title, fit.runs, fit.parameters,
-             fit.residual_degrees_of_freedom);
-  fmt::print("  {}\n\n", fit.model.equation(fit.response_name));
-  fmt::print("  {:<24} {:>14} {:>12} {:>10} {:>10}\n", "term", "coefficient", "std error", "t value", "p value");
-  for (const auto& c : fit.coefficients)
-    fmt::print("  {:<24} {:>14} {:>12} {:>10} {:>10}\n", c.term, number(c.estimate), number(c.standard_error, 4),
-               number(c.t_value, 4), p_text(c.p_value));
-  fmt::print("\n  R² {:.4f}   adjusted R² {:.4f}   predicted R² {}   std dev {}   mean {}   PRESS {}\n\n",
-             fit.r_squared, fit.adjusted_r_squared,
-             std::isnan(fit.predicted_r_squared) ? "n/a (a run has leverage 1)"
-                                                 : fmt::format("{:.4f}", fit.predicted_r_squared),
-             number(fit.residual_std_dev, 4), number(fit.response_mean), number(fit.press, 4));
-  fmt::print("  ANOVA (terms: partial sums of squares)\n");
-  fmt::print("  {:<24} {:>14} {:>4} {:>14} {:>10} {:>10}\n", "source", "sum of squares", "df", "mean square",
-             "F value", "p value");
-  for (const auto& row : fit.anova) {
-    const bool term_row = row.source != "model" && row.source != "residual" && row.source != "lack of fit" &&
-                          row.source != "pure error" && row.source != "total";
-    const bool sub_row = row.source == "lack of fit" || row.source == "pure error";
-    const std::string source = (term_row || sub_row ? "  " : "") + row.source;
-    fmt::print("  {:<24} {:>14} {:>4} {:>14} {:>10} {:>10}\n", source, number(row.sum_of_squares),
-               row.degrees_of_freedom, std::isnan(row.mean_square) ? "" : number(row.mean_square),
-               std::isnan(row.f_value) ? "" : number(row.f_value, 4), p_text(row.p_value));
-  }
-  if (!fit.has_lack_of_fit)
-    fmt::print("  (no lack-of-fit test: it needs replicated runs and more distinct settings than terms)\n");
-  fmt::print("\n");
-}
-
-json fit_json(const doe::ResponseSurfaceFit& fit, const std::string& unit) {
-  json j;
-  j["name"] = fit.response_name;
-  j["unit"] = unit;
-  j["runs"] = fit.runs;
-  j["equation"] = fit.model.equation(fit.response_name, 17);
-  j["coefficients"] = json::array();
-  for (const auto& c : fit.coefficients)
-    j["coefficients"].push_back({{"term", c.term},
-                                 {"estimate", c.estimate},
-                                 {"standard_error", c.standard_error},
-                                 {"t_value", c.t_value},
-                                 {"p_value", c.p_value}});
-  j["r_squared"] = fit.r_squared;
-  j["adjusted_r_squared"] = fit.adjusted_r_squared;
-  j["predicted_r_squared"] = fit.predicted_r_squared;  // NaN is written as null
-  j["press"] = fit.press;
-  j["residual_std_dev"] = fit.residual_std_dev;
-  j["residual_degrees_of_freedom"] = fit.residual_degrees_of_freedom;
-  j["mean"] = fit.response_mean;
-  j["anova"] = json::array();
-  for (const auto& row : fit.anova)
-    j["anova"].push_back({{"source", row.source},
-                          {"sum_of_squares", row.sum_of_squares},
-                          {"df", row.degrees_of_freedom},
-                          {"mean_square", row.mean_square},
-                          {"f_value", row.f_value},
-                          {"p_value", row.p_value}});
-  return j;
-}
-
 std::vector<Target> parse_targets(const std::string& text, const std::string& option, bool allow_factor) {
   std::vector<Target> targets;
   for (const std::string& item : split_list(text, option)) {
@@ -191,8 +120,8 @@ std::string describe_ranges(const std::vector<std::string>& outside, const FitIn
   std::string text;
   for (const std::string& name : outside) {
     const auto& range = in.ranges[factor_index(in.factor_names, name, "")];
-    text += fmt::format("{}{} outside {} to {}", text.empty() ? "" : "; ", name, number(range.low),
-                        number(range.high));
+    text += fmt::format("{}{} outside {} to {}", text.empty() ? "" : "; ", name, format_number(range.low),
+                        format_number(range.high));
   }
   return text;
 }
@@ -225,7 +154,7 @@ json solve_and_report(const FitOptions& options, const FitInputs& in, const std:
 
   std::string fixed_text;
   for (std::size_t f = 0; f < x.size(); ++f)
-    if (is_fixed[f]) fixed_text += fmt::format("{}{} = {}", fixed_text.empty() ? "" : ", ", in.factor_names[f], number(x[f]));
+    if (is_fixed[f]) fixed_text += fmt::format("{}{} = {}", fixed_text.empty() ? "" : ", ", in.factor_names[f], format_number(x[f]));
 
   json j;
   std::vector<doe::Solution> solutions;
@@ -250,16 +179,16 @@ json solve_and_report(const FitOptions& options, const FitInputs& in, const std:
           if (is_fixed[g] && !solved[g]) candidates.push_back(g);
         if (candidates.size() != 1)
           throw InputError(fmt::format("--then {}: name the factor to solve for, as {}={}:FACTOR", t.response,
-                                       t.response, number(t.value, 17)));
+                                       t.response, format_number(t.value, 17)));
         f = candidates[0];
       }
       steps.push_back({&fit_of(fits, t.response, "--then").model, t.value, f});
       solved[f] = true;
     }
-    fmt::print("Solve {} = {} for {}{}", request.first[0].response, number(request.first[0].value, 10),
+    fmt::print("Solve {} = {} for {}{}", request.first[0].response, format_number(request.first[0].value, 10),
                in.factor_names[free_factors[0]], fixed_text.empty() ? "" : ", with " + fixed_text);
     for (std::size_t s = 1; s < steps.size(); ++s)
-      fmt::print("; then {} = {} for {}", request.then[s - 1].response, number(steps[s].target, 10),
+      fmt::print("; then {} = {} for {}", request.then[s - 1].response, format_number(steps[s].target, 10),
                  in.factor_names[steps[s].free_factor]);
     fmt::print(" (closed form, each step quadratic in its factor):\n");
     solutions = doe::solve_sequentially(steps, x, in.ranges);
@@ -285,7 +214,7 @@ json solve_and_report(const FitOptions& options, const FitInputs& in, const std:
           throw InputError(fmt::format("--solve names '{}' twice", t.response));
       models.push_back(&fit_of(fits, t.response, "--solve").model);
       targets.push_back(t.value);
-      names += fmt::format("{}{} = {}", names.empty() ? "" : ", ", t.response, number(t.value, 10));
+      names += fmt::format("{}{} = {}", names.empty() ? "" : ", ", t.response, format_number(t.value, 10));
     }
     std::string free_names;
     for (const std::size_t f : free_factors) free_names += (free_names.empty() ? "" : ", ") + in.factor_names[f];
@@ -301,25 +230,13 @@ json solve_and_report(const FitOptions& options, const FitInputs& in, const std:
   if (solutions.empty()) fmt::print("  no real root: the surfaces do not reach these targets\n");
   for (std::size_t s = 0; s < solutions.size(); ++s) {
     const doe::Solution& solution = solutions[s];
-    std::string values, responses;
-    json jf, jr;
-    for (std::size_t f = 0; f < solution.factors.size(); ++f) {
-      values += fmt::format("{}{} = {}", values.empty() ? "" : ", ", in.factor_names[f], number(solution.factors[f], 8));
-      jf[in.factor_names[f]] = solution.factors[f];
-    }
-    for (const auto& fit : fits) {
-      const double y = fit.model.evaluate(solution.factors);
-      responses += fmt::format("{}{} = {}", responses.empty() ? "" : ", ", fit.response_name, number(y, 8));
-      jr[fit.response_name] = y;
-    }
-    fmt::print("  {}. {}   (fitted: {}){}\n", s + 1, values, responses,
+    fmt::print("  {}. {}{}\n", s + 1, solution_text(solution, in.factor_names, fits),
                solution.inside() ? "" : "   OUTSIDE the design range");
     if (!solution.inside())
       fmt::print(stderr, "regodem: warning: root {} lies outside the design range ({}): the surface is extrapolated "
                          "there\n",
                  s + 1, describe_ranges(solution.outside, in));
-    j["solutions"].push_back(
-        {{"factors", jf}, {"responses", jr}, {"inside_design_range", solution.inside()}, {"outside", solution.outside}});
+    j["solutions"].push_back(solution_json(solution, in.factor_names, fits));
   }
   return j;
 }
@@ -399,7 +316,7 @@ int run_fit(const FitOptions& options) {
       const std::string unit = in.table.units[in.table.column(response)];
       fits.push_back(
           doe::fit_response_surface(in.x, y, in.factor_names, terms_for(options, response, in.factor_names), response));
-      print_report(fits.back(), unit);
+      fmt::print("{}", fit_report_text(fits.back(), unit));
       j["responses"].push_back(fit_json(fits.back(), unit));
     }
     if (!options.solve.empty()) j["solve"] = solve_and_report(options, in, fits);

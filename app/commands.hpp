@@ -82,9 +82,17 @@ struct FitOptions {
   std::vector<std::string> then;       // RESPONSE=TARGET[:FACTOR]
 };
 
+/// `regodem calibrate` (command_calibrate.cpp).
+struct CalibrateOptions {
+  std::string calibration_path;
+  std::string output_directory;  // empty: out/<calibration file stem>
+  int processes = 0;             // 0: the file's `processes`
+};
+
 /// Each adds its subcommand (with its options bound to `options`) to `app`.
 CLI::App* add_doe_command(CLI::App& app, DoeOptions& options);
 CLI::App* add_fit_command(CLI::App& app, FitOptions& options);
+CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& options);
 
 int run_scenario(const RunOptions& options);
 /// Runs on from a checkpoint into options.output_directory (command_run.cpp).
@@ -92,6 +100,7 @@ int continue_run(const RunOptions& options, const ResumePoint& resume);
 int resume_run(const ResumeOptions& options);
 int run_doe(const DoeOptions& options);
 int run_fit(const FitOptions& options);
+int run_calibrate(const CalibrateOptions& options);
 int plot_runs(const PlotOptions& options);
 int validate_scenario(const ValidateOptions& options);
 int print_info();

@@ -15,16 +15,23 @@ static_assert(std::atomic<int>::is_always_lock_free);
 std::atomic<bool> stop_requested{false};
 std::atomic<int> received_signal{0};
 
+std::atomic<int> signal_count{0};
+
+void count_signal(int signal_number) {
+  received_signal.store(signal_number);
+  signal_count.fetch_add(1);
+}
+
 void request_stop(int signal_number) {
   received_signal.store(signal_number);
   stop_requested.store(true);
 }
 
-void install(int signal_number) {
+void install(int signal_number, void (*handler)(int), int flags) {
   struct sigaction action {};
-  action.sa_handler = request_stop;
+  action.sa_handler = handler;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND;  // the second signal gets the default action
+  action.sa_flags = flags;
   if (::sigaction(signal_number, &action, nullptr) != 0) {
     throw std::runtime_error(fmt::format("cannot install the handler for signal {}", signal_number));
   }
@@ -33,9 +40,15 @@ void install(int signal_number) {
 }  // namespace
 
 const std::atomic<bool>& install_stop_request_handlers() {
-  install(SIGINT);
-  install(SIGTERM);
+  install(SIGINT, request_stop, SA_RESETHAND);  // the second signal gets the default action
+  install(SIGTERM, request_stop, SA_RESETHAND);
   return stop_requested;
+}
+
+const std::atomic<int>& install_signal_counter() {
+  install(SIGINT, count_signal, 0);
+  install(SIGTERM, count_signal, 0);
+  return signal_count;
 }
 
 int stop_signal() { return received_signal.load(); }

@@ -10,6 +10,11 @@ namespace regodem::app {
 /// that does not stop at once.
 const std::atomic<bool>& install_stop_request_handlers();
 
+/// For a command that runs child processes (`regodem calibrate`): counts every SIGINT
+/// and SIGTERM and stays installed, so that each one can be passed on to the children
+/// (the first stops them cleanly, a second ends them at once, as for `regodem run`).
+const std::atomic<int>& install_signal_counter();
+
 /// The signal that asked to stop (SIGINT, SIGTERM), or 0 if none came.
 int stop_signal();
 

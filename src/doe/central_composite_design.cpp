@@ -116,4 +116,23 @@ CentralCompositeDesign make_central_composite_design(const std::vector<DesignFac
   return design;
 }
 
+std::string header_name(const DesignFactor& factor) {
+  return factor.unit.empty() ? factor.name : fmt::format("{} [{}]", factor.name, factor.unit);
+}
+
+std::string design_csv(const CentralCompositeDesign& design) {
+  std::string text = "run,std_order,point_type";
+  for (const auto& factor : design.factors) text += fmt::format(",{}_coded", factor.name);
+  for (const auto& factor : design.factors) text += "," + header_name(factor);
+  text += "\n";
+  for (std::size_t r = 0; r < design.runs.size(); ++r) {
+    const DesignPoint& point = design.runs[r];
+    text += fmt::format("{},{},{}", r + 1, point.standard_order, point_type_name(point.type));
+    for (const double v : point.coded) text += fmt::format(",{}", v);  // shortest text that reads back exactly
+    for (const double v : point.actual) text += fmt::format(",{}", v);
+    text += "\n";
+  }
+  return text;
+}
+
 }  // namespace regodem::doe

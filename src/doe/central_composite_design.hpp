@@ -65,4 +65,12 @@ CentralCompositeDesign make_central_composite_design(const std::vector<DesignFac
 /// The rotatable α for a factorial part of n_F points: n_F^(1/4).
 double rotatable_alpha(int factorial_points);
 
+/// `name [unit]` as RegoDEM's CSV headers write it (`name` without a unit).
+std::string header_name(const DesignFactor& factor);
+
+/// The design as CSV (`regodem doe ccd`, docs/calibration.md): run, std_order,
+/// point_type, NAME_coded per factor, then each factor's actual value under
+/// header_name; numbers in the shortest form that reads back to the same double.
+std::string design_csv(const CentralCompositeDesign& design);
+
 }  // namespace regodem::doe

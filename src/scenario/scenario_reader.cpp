@@ -184,13 +184,7 @@ ScenarioSpec read_scenario_string(const std::string& yaml_text,
                                   const std::vector<std::string>& set_overrides) {
   ScenarioReadContext context;
   context.file = file_name_for_messages;
-  YAML::Node tree;
-  try {
-    tree = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& problem) {
-    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", file_name_for_messages,
-                                 problem.mark.line + 1, problem.mark.column + 1, problem.msg));
-  }
+  YAML::Node tree = load_yaml(yaml_text, file_name_for_messages);
   apply_overrides(tree, set_overrides, context);
   ScenarioSpec spec = read_tree(tree, context);
   context.diagnostics.throw_if_any();

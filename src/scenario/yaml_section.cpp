@@ -139,6 +139,15 @@ std::optional<std::string> YamlValue::choice(const std::vector<std::string>& all
   return std::nullopt;
 }
 
+YAML::Node load_yaml(const std::string& text, const std::string& file) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& problem) {
+    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", file, problem.mark.line + 1,
+                                 problem.mark.column + 1, problem.msg));
+  }
+}
+
 bool is_valid_name(std::string_view name) {
   if (name.empty()) return false;
   for (const char c : name) {

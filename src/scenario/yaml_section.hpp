@@ -132,6 +132,10 @@ class YamlSection {
   std::vector<YAML::Mark> key_marks_;  // parallel to entries_
 };
 
+/// Parses YAML text; a syntax error is an InputError "file:line:column: YAML syntax
+/// error: ..." (`file` as named in messages).
+YAML::Node load_yaml(const std::string& text, const std::string& file);
+
 /// Names of materials, walls, stages...: letters, digits, '_' and '-' (they appear in
 /// --set paths and, later, in output file names).
 bool is_valid_name(std::string_view name);

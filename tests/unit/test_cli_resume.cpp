@@ -4,9 +4,7 @@
 // series, snapshots and the final checkpoint's state sections, byte for byte). A
 // corrupt newest checkpoint is reported and the previous one used; a changed scenario
 // is refused; a new scenario starts from another run's checkpoint.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,58 +21,22 @@
 #include <nlohmann/json.hpp>
 
 #include "io/checkpoint_file.hpp"
-
-extern char** environ;
+#include "regodem_process.hpp"
 
 namespace regodem {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Finished {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-std::string read_file(const fs::path& path) {
-  std::ifstream input(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(input), std::istreambuf_iterator<char>()};
-}
+using test::Finished;
+using test::read_file;
+using test::run_regodem;
+using test::start_regodem;
+using test::wait_for;
 
 std::size_t line_count(const fs::path& path) {
   const std::string text = read_file(path);
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-}
-
-/// Starts regodem with `arguments` in `directory`, output to `log`.
-pid_t start_regodem(const std::vector<std::string>& arguments, const fs::path& directory, const fs::path& log) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addchdir_np(&actions, directory.c_str());
-  std::vector<std::string> all{REGODEM_BINARY};
-  all.insert(all.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int error = posix_spawn(&pid, REGODEM_BINARY, &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  EXPECT_EQ(error, 0);
-  return pid;
-}
-
-Finished wait_for(pid_t pid, const fs::path& log) {
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), read_file(log)};
-}
-
-Finished run_regodem(const std::vector<std::string>& arguments, const fs::path& directory) {
-  const fs::path log = directory / "regodem.log";
-  return wait_for(start_regodem(arguments, directory, log), log);
 }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

@@ -1,0 +1,349 @@
+// The calibration file: the same located, collect-everything reading as scenarios
+// (yaml_section.hpp), so a user sees every problem of the file in one go.
+#include "scenario/calibration_reader.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "core/error.hpp"
+#include "doe/polynomial_model.hpp"
+#include "scenario/yaml_section.hpp"
+
+namespace regodem {
+namespace {
+
+namespace fs = std::filesystem;
+using doe::CalibrationSpec;
+
+std::string located(const YamlValue& value) { return value.where().describe(); }
+
+/// A scenario file named relative to the calibration file, returned absolute.
+std::optional<std::string> read_scenario_path(const YamlSection& section, const std::string& base_directory) {
+  const auto value = section.require("scenario");
+  if (!value) return std::nullopt;
+  const auto text = value->text();
+  if (!text) return std::nullopt;
+  fs::path path(*text);
+  if (path.is_relative()) path = fs::path(base_directory) / path;
+  std::error_code ignored;
+  path = fs::absolute(path, ignored).lexically_normal();
+  if (!fs::is_regular_file(path, ignored)) {
+    value->error(fmt::format("no such scenario file: '{}'", path.string()));
+    return std::nullopt;
+  }
+  return path.string();
+}
+
+/// A non-empty text without spaces: a key path into summary.json or into the scenario.
+std::optional<std::string> read_key_path(const YamlValue& value) {
+  const auto text = value.text();
+  if (!text) return std::nullopt;
+  if (text->empty() || text->find_first_of(" \t=") != std::string::npos) {
+    value.error(fmt::format("'{}' is not a key path: dotted keys without spaces or '=', e.g. a.b.c", *text));
+    return std::nullopt;
+  }
+  return text;
+}
+
+std::optional<std::string> read_key_path(const YamlSection& section, std::string_view key) {
+  const auto value = section.require(key);
+  return value ? read_key_path(*value) : std::nullopt;
+}
+
+/// A list of "key.path=value" texts, as --set takes them.
+std::vector<std::string> read_set_list(const YamlSection& section, std::string_view key) {
+  std::vector<std::string> result;
+  const auto value = section.get(key);
+  if (!value) return result;
+  const auto items = value->items();
+  if (!items) return result;
+  for (const YamlValue& item : *items) {
+    const auto text = item.text();
+    if (!text) continue;
+    if (text->find('=') == std::string::npos || text->front() == '=') {
+      item.error(fmt::format("'{}' is not a --set override: write key.path=value", *text));
+      continue;
+    }
+    result.push_back(*text);
+  }
+  return result;
+}
+
+/// A plain number (a value in the unit the entry states).
+std::optional<double> read_number(const YamlSection& section, std::string_view key, bool required) {
+  const auto value = required ? section.require(key) : section.get(key);
+  if (!value) return std::nullopt;
+  return value->quantity(Dimension::dimensionless);
+}
+
+void read_reference(const YamlSection& root, const std::string& base, CalibrationSpec& spec) {
+  const auto value = root.require("reference");
+  if (!value) return;
+  const auto section = value->section();
+  if (!section) return;
+  section->allow_only({"scenario", "set", "pass_on"});
+  spec.reference.scenario = read_scenario_path(*section, base).value_or("");
+  spec.reference.set = read_set_list(*section, "set");
+  const auto pass_on = section->get("pass_on");
+  if (!pass_on) return;
+  for (const YamlValue& item : pass_on->items().value_or(std::vector<YamlValue>{})) {
+    const auto entry = item.section();
+    if (!entry) continue;
+    entry->allow_only({"from", "set", "unit"});
+    doe::PassOn p;
+    p.from_json_path = read_key_path(*entry, "from").value_or("");
+    p.set_path = read_key_path(*entry, "set").value_or("");
+    p.unit = entry->text("unit").value_or("");
+    p.where = located(item);
+    spec.reference.pass_on.push_back(p);
+  }
+}
+
+/// The items of a list that must have at least one.
+std::vector<YamlValue> required_items(const YamlSection& root, std::string_view key, std::string_view what) {
+  const auto value = root.require(key);
+  if (!value) return {};
+  const auto items = value->items();
+  if (items && items->empty()) value->error(fmt::format("give at least one {}", what));
+  return items.value_or(std::vector<YamlValue>{});
+}
+
+void read_factors(const YamlSection& root, CalibrationSpec& spec) {
+  for (const YamlValue& item : required_items(root, "factors", "factor")) {
+    const auto entry = item.section();
+    if (!entry) continue;
+    entry->allow_only({"name", "set", "centre", "step", "unit"});
+    doe::CalibrationFactor f;
+    if (const auto name_value = entry->require("name")) f.design.name = name_value->name().value_or("");
+    f.set_path = read_key_path(*entry, "set").value_or("");
+    f.design.unit = entry->text("unit").value_or("");
+    f.design.centre = read_number(*entry, "centre", true).value_or(0.0);
+    if (const auto step = read_number(*entry, "step", true)) {
+      if (*step > 0.0) {
+        f.design.step = *step;
+      } else {
+        entry->get("step")->error("must be greater than 0 (the actual change per coded unit)");
+      }
+    }
+    for (const doe::CalibrationFactor& other : spec.factors) {
+      if (!f.design.name.empty() && other.design.name == f.design.name)
+        item.error(fmt::format("a second factor named '{}'", f.design.name));
+      if (!f.set_path.empty() && other.set_path == f.set_path)
+        item.error(
+            fmt::format("factors '{}' and '{}' set the same key '{}'", other.design.name, f.design.name, f.set_path));
+    }
+    spec.factors.push_back(f);
+  }
+}
+
+void read_design(const YamlSection& root, CalibrationSpec& spec) {
+  spec.design.centre_points = 3;  // as the paper
+  const auto value = root.get("design");
+  if (!value) return;
+  const auto section = value->section();
+  if (!section) return;
+  section->allow_only({"alpha", "centre_points"});
+  if (const auto alpha = section->get("alpha")) {
+    const auto text = alpha->text();
+    if (text && *text == "rotatable") {
+      spec.design.alpha_kind = doe::AlphaKind::rotatable;
+    } else if (text && *text == "face") {
+      spec.design.alpha_kind = doe::AlphaKind::face;
+    } else if (text) {
+      try {
+        spec.design.alpha = parse_quantity(*text, Dimension::dimensionless);
+        spec.design.alpha_kind = doe::AlphaKind::given;
+        if (!(spec.design.alpha > 0.0)) alpha->error("α must be greater than 0");
+      } catch (const InputError&) {
+        alpha->error(fmt::format("'{}' is not rotatable, face or a number", *text));
+      }
+    }
+  }
+  if (const auto points = section->get("centre_points"))
+    spec.design.centre_points = static_cast<int>(points->whole_number().value_or(3));
+}
+
+void read_target(const YamlValue& value, doe::CalibrationResponse& response) {
+  if (value.node().IsScalar() && value.node().Scalar() == "reference") {
+    response.target_reference_path = response.json_path;  // the same key in the reference's summary
+    return;
+  }
+  const auto section = value.section();
+  if (!section || !value.node().IsMap()) {
+    if (section) value.error("expected `reference` or {reference: KEY.PATH} or {value: NUMBER}");
+    return;
+  }
+  section->allow_only({"reference", "value"});
+  const auto which = section->exactly_one_of({"reference", "value"});
+  if (!which) return;
+  if (*which == "reference") {
+    response.target_reference_path = read_key_path(*section->get("reference"));
+  } else {
+    response.target_value = read_number(*section, "value", true);
+  }
+}
+
+void read_responses(const YamlSection& root, CalibrationSpec& spec) {
+  std::vector<std::string> factor_names;
+  for (const auto& f : spec.factors) factor_names.push_back(f.design.name);
+  for (const YamlValue& item : required_items(root, "responses", "response")) {
+    const auto entry = item.section();
+    if (!entry) continue;
+    entry->allow_only({"name", "value", "unit", "target", "terms"});
+    doe::CalibrationResponse r;
+    r.where = located(item);
+    if (const auto name_value = entry->require("name")) r.name = name_value->name().value_or("");
+    r.json_path = read_key_path(*entry, "value").value_or("");
+    r.unit = entry->text("unit").value_or("");
+    if (const auto target = entry->require("target")) read_target(*target, r);
+    if (const auto terms = entry->get("terms")) {
+      const std::string text = terms->text().value_or("full");
+      if (text != "full") {
+        try {
+          doe::parse_terms(text, factor_names);
+          r.terms = text;
+        } catch (const InputError& problem) {
+          terms->error(problem.what());
+        }
+      }
+    }
+    for (const auto& other : spec.responses)
+      if (!r.name.empty() && other.name == r.name) item.error(fmt::format("a second response named '{}'", r.name));
+    for (const auto& name : factor_names)
+      if (!r.name.empty() && name == r.name) item.error(fmt::format("'{}' is a factor's name too", r.name));
+    spec.responses.push_back(r);
+  }
+}
+
+bool is_factor(const CalibrationSpec& spec, const std::string& name) {
+  for (const auto& f : spec.factors)
+    if (f.design.name == name) return true;
+  return false;
+}
+
+bool is_response(const CalibrationSpec& spec, const std::string& name) {
+  for (const auto& r : spec.responses)
+    if (r.name == name) return true;
+  return false;
+}
+
+void read_solve(const YamlSection& root, CalibrationSpec& spec) {
+  doe::CalibrationSolve& solve = spec.solve;
+  const auto value = root.get("solve");
+  std::optional<YamlSection> section;
+  if (value) section = value->section();
+  if (section) {
+    section->allow_only({"mode", "fix", "steps"});
+    if (const auto mode = section->get("mode")) {
+      if (mode->choice({"simultaneous", "sequential"}).value_or("") == "sequential")
+        solve.mode = doe::CalibrationSolveMode::sequential;
+    }
+    if (const auto fix = section->get("fix")) {
+      if (const auto fixed = fix->section()) {
+        for (const auto& entry : fixed->entries()) {
+          if (!is_factor(spec, entry.key)) {
+            entry.value.error(fmt::format("'{}' is not one of the factors", entry.key));
+            continue;
+          }
+          if (const auto number = entry.value.quantity(Dimension::dimensionless))
+            solve.fixed.emplace_back(entry.key, *number);
+        }
+      }
+    }
+    if (const auto steps = section->get("steps")) {
+      if (solve.mode != doe::CalibrationSolveMode::sequential)
+        steps->error("steps belong to mode: sequential (simultaneous solves every response together)");
+      for (const YamlValue& item : steps->items().value_or(std::vector<YamlValue>{})) {
+        const auto step = item.section();
+        if (!step) continue;
+        step->allow_only({"response", "factor"});
+        doe::CalibrationSolveStep s;
+        if (const auto r = step->require("response")) {
+          s.response = r->text().value_or("");
+          if (!s.response.empty() && !is_response(spec, s.response))
+            r->error(fmt::format("'{}' is not one of the responses", s.response));
+        }
+        if (const auto f = step->require("factor")) {
+          s.factor = f->text().value_or("");
+          if (!s.factor.empty() && !is_factor(spec, s.factor))
+            f->error(fmt::format("'{}' is not one of the factors", s.factor));
+        }
+        solve.steps.push_back(s);
+      }
+    }
+  }
+  const YamlValue& where = section ? section->value() : root.value();
+  if (solve.mode == doe::CalibrationSolveMode::sequential) {
+    if (solve.steps.empty()) where.error("a sequential solve needs `steps`: [{response: R, factor: F}, ...]");
+    return;
+  }
+  const std::size_t free_factors = spec.factors.size() - solve.fixed.size();
+  if (!spec.factors.empty() && !spec.responses.empty() && spec.responses.size() != free_factors)
+    where.error(
+        fmt::format("a simultaneous solve needs as many responses as free factors: {} responses, {} free "
+                    "factors (hold factors with `fix`, or solve sequentially)",
+                    spec.responses.size(), free_factors));
+}
+
+/// A whole number of 1 or more under `key`, if given.
+std::optional<int> read_count(const YamlSection& root, std::string_view key) {
+  const auto value = root.get(key);
+  if (!value) return std::nullopt;
+  const auto n = value->whole_number();
+  if (n && *n >= 1) return static_cast<int>(*n);
+  if (n) value->error("must be at least 1");
+  return std::nullopt;
+}
+
+void read_runs(const YamlSection& root, CalibrationSpec& spec) {
+  spec.processes = read_count(root, "processes").value_or(spec.processes);
+  spec.threads_per_run = read_count(root, "threads_per_run").value_or(spec.threads_per_run);
+}
+
+}  // namespace
+
+doe::CalibrationSpec read_calibration_string(const std::string& yaml_text, const std::string& file_name_for_messages) {
+  ScenarioReadContext context;
+  context.file = file_name_for_messages;
+  const YAML::Node tree = load_yaml(yaml_text, file_name_for_messages);
+  CalibrationSpec spec;
+  spec.file = file_name_for_messages;
+  const YamlValue top(context, tree, tree.Mark(), "", "");
+  const auto top_section = top.section();
+  if (!tree.IsMap() || !top_section || !top_section->has("calibration")) {
+    top.error("not a calibration file: it needs a top-level `calibration:` section (docs/calibration.md)");
+    context.diagnostics.throw_if_any();
+  }
+  top_section->allow_only({"calibration"});
+  const auto root = top_section->get("calibration")->section();
+  if (root) {
+    root->allow_only(
+        {"scenario", "reference", "set", "factors", "design", "responses", "solve", "processes", "threads_per_run"});
+    const std::string base = fs::path(file_name_for_messages).parent_path().string();
+    spec.scenario = read_scenario_path(*root, base).value_or("");
+    read_reference(*root, base, spec);
+    spec.set = read_set_list(*root, "set");
+    read_factors(*root, spec);
+    read_design(*root, spec);
+    read_responses(*root, spec);
+    read_solve(*root, spec);
+    read_runs(*root, spec);
+  }
+  context.diagnostics.throw_if_any();
+  return spec;
+}
+
+doe::CalibrationSpec read_calibration_file(const std::string& path) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) throw InputError(fmt::format("{}: no such calibration file", path));
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.is_open() || in.bad()) throw InputError(fmt::format("{}: cannot read the calibration file", path));
+  return read_calibration_string(text, path);
+}
+
+}  // namespace regodem

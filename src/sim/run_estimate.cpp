@@ -6,12 +6,14 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <numeric>
 #include <optional>
 #include <unordered_map>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "geometry/mesh_inside.hpp"
 #include "sim/geometric_packing.hpp"
 #include "sim/simulation.hpp"
 #include "sim/static_heat_stepper.hpp"
@@ -181,6 +183,59 @@ void time_sample(StageCost& cost, std::size_t particles, const EstimateOptions& 
   cost.particle_steps_per_s = elapsed > 0.0 ? static_cast<double>(particles * done) / elapsed : 0.0;
 }
 
+/// Whether a wall's motion is under way at some time in [start_s, end_s).
+bool walls_move_during(const Simulation& sim, double start_s, double end_s) {
+  const double slack_s = 1e-9 * (end_s - start_s);  // stage ends add up with round-off
+  for (const WallBody& wall : sim.walls.bodies)
+    if (wall.motion.moves() && wall.motion.start_s < end_s - slack_s && wall.motion.stop_s > start_s + slack_s &&
+        end_s > start_s)
+      return true;
+  return false;
+}
+
+/// Takes out the particles a wall has moved into (by more than a tenth of their radius,
+/// so that a bed resting on a floor keeps its bottom layer), and those inside a mesh.
+/// Returns how many.
+std::size_t clear_walls(Simulation& sim) {
+  const ParticleStore& p = sim.particles;
+  std::vector<char> remove(p.size(), 0);
+  std::size_t count = 0;
+  MeshTouchFinder finder;
+  std::vector<MeshTouch> touches;
+  for (const MeshWall& mesh : sim.walls.meshes) {
+    std::vector<std::uint32_t> every(mesh.mesh.triangle_count());
+    std::iota(every.begin(), every.end(), 0u);
+    const RigidPose& pose = sim.walls.bodies[mesh.body].pose;
+    const Aabb box = mesh.mesh.bounding_box();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double r = p.radius_m[i];
+      const Vec3 local = pose.to_reference(p.position_m[i]);
+      if (local.x < box.lo_m.x - r || local.y < box.lo_m.y - r || local.z < box.lo_m.z - r ||
+          local.x > box.hi_m.x + r || local.y > box.hi_m.y + r || local.z > box.hi_m.z + r)
+        continue;
+      finder.find(mesh, pose, every.data(), static_cast<std::uint32_t>(every.size()), p.position_m[i], 0.9 * r,
+                  touches);
+      if (!touches.empty() || point_inside(mesh.mesh, local)) remove[i] = 1;
+    }
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (const WallPrimitive& w : sim.walls.primitives) {
+      const WallProximity near = closest_wall_point(w, p.position_m[i]);
+      if (near.candidate && near.distance_m < 0.9 * p.radius_m[i]) remove[i] = 1;
+    }
+    count += remove[i] ? 1 : 0;
+  }
+  sim.remove_particles(remove);
+  return count;
+}
+
+/// Simulated time at the end of stage s, by the plan's durations and bounds.
+double plan_end_s(const std::vector<StageCost>& costs, std::size_t s) {
+  double end_s = 0.0;
+  for (std::size_t k = 0; k <= s; ++k) end_s += costs[k].simulated_s;
+  return end_s;
+}
+
 }  // namespace
 
 const char* step_count_name(StepCount basis) {
@@ -289,9 +344,42 @@ RunEstimate estimate_run(Simulation& sim, const StagePlan& plan, const EstimateO
         say(fmt::format("{}: static bed, heat step {:.4g} s, timing up to {} heat steps on {} particles", who,
                         cost.step_s, options.sample_steps, n));
         time_sample(cost, n, options, [&] { stepper.advance(stepper.time_step_s()); });
-      } else {
+      } else if (!walls_move_during(sim, plan_end_s(estimate.stages, s) - cost.simulated_s,
+                                    plan_end_s(estimate.stages, s))) {
         say(fmt::format("{}: timing up to {} steps on {} particles", who, options.sample_steps, n));
         time_sample(cost, n, options, [&] { sim.step(); });
+      } else {
+        // Walls move in this stage (a drill feeds): a step costs more once it is in the
+        // bed, so the stage is timed in the middle of each third, the walls where they
+        // will be then, the particles in their way taken out (the hole).
+        const double end_s = plan_end_s(estimate.stages, s), start_s = end_s - cost.simulated_s;
+        EstimateOptions third = options;
+        third.sample_steps = std::max<std::uint64_t>(1, options.sample_steps / 3);
+        third.sample_seconds = options.sample_seconds / 3.0;
+        double seconds_per_particle_step = 0.0, resident = 0.0;
+        std::size_t removed = 0;
+        StageCost part;
+        for (int p = 0; p < 3; ++p) {
+          const double at_s = start_s + cost.simulated_s * (2.0 * p + 1.0) / 6.0;
+          if (at_s > sim.time_s()) {
+            sim.jump_to(at_s);
+            removed += clear_walls(sim);
+          }
+          say(fmt::format("{}: moving walls at t = {:.4g} s, timing up to {} steps on {} particles", who, at_s,
+                          third.sample_steps, sim.particles.size()));
+          time_sample(part, sim.particles.size(), third, [&] { sim.step(); });
+          seconds_per_particle_step += 1.0 / part.particle_steps_per_s / 3.0;
+          resident = std::max(resident, part.resident_bytes);
+          cost.sample_steps += part.sample_steps;
+          cost.sample_wall_s += part.sample_wall_s;
+        }
+        cost.sampled = true;
+        cost.sample_particles = sim.particles.size();
+        cost.particle_steps_per_s = 1.0 / seconds_per_particle_step;
+        cost.resident_bytes = resident;
+        cost.note += fmt::format("{}walls move: timed at 3 times in the stage with the walls where they will be "
+                                 "({} particles in their way removed)",
+                                 cost.note.empty() ? "" : "; ", removed);
       }
       cost.predicted_wall_s =
           cost.setup_wall_s + static_cast<double>(cost.steps) * static_cast<double>(cost.particles) / cost.particle_steps_per_s;

@@ -45,6 +45,28 @@ TEST(EstimateCli, DemoPrintsATotalAndWritesJson) {
   EXPECT_EQ(json["machine"]["threads"], 1);
 }
 
+// The drill feeds during its stage: it is timed at three times, in the bed, with the
+// grains in its way taken out.
+TEST(EstimateCli, DrillStageIsTimedWithTheDrillInTheBed) {
+  const fs::path dir = fresh_directory("drill");
+  const std::string scenario = std::string(REGODEM_SOURCE_DIR) + "/scenarios/drill-small.yaml";
+  const Finished done = run_regodem(
+      {"estimate", scenario, "--threads", "1", "--sample-steps", "9", "--sample-seconds", "1", "--json", "d.json"}, dir);
+  ASSERT_EQ(done.exit_code, 0) << done.output;
+  const nlohmann::json json = nlohmann::json::parse(read_file(dir / "d.json"));
+  ASSERT_EQ(json.at("stages").size(), 3u);
+  const nlohmann::json& drill = json["stages"][2];
+  EXPECT_EQ(drill["end"], "depth");
+  EXPECT_EQ(drill["steps_basis"], "exact");
+  // 18 mm at 20 mm/s from the stage's start at 0.15 s (when the feed starts) = 0.9 s.
+  EXPECT_NEAR(drill["simulated_time_s"].get<double>(), 0.9, 1e-9);
+  EXPECT_EQ(drill["particles"], 2500);
+  EXPECT_LT(drill["sample_particles"].get<int>(), 2500);  // the hole
+  EXPECT_NE(drill["note"].get<std::string>().find("walls move"), std::string::npos);
+  EXPECT_TRUE(json["total"]["complete"].get<bool>());
+  EXPECT_FALSE(json["total"]["upper_bound"].get<bool>());
+}
+
 TEST(EstimateCli, BadInputIsRefusedWithExitStatus2) {
   const fs::path dir = fresh_directory("bad");
   const Finished bad_value = run_regodem({"estimate", kDemo, "--set", "stages.fill.duration=soon"}, dir);

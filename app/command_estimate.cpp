@@ -36,8 +36,8 @@ const char* mark(StepCount basis) {
 std::string end_text(const StageCost& c) { return c.static_bed ? fmt::format("{} (static bed)", c.end) : c.end; }
 
 std::string machine_line(int threads) {
-  return fmt::format("machine: {} cores, {} threads used; {}, {} build, regodem {}", omp_get_num_procs(), threads,
-                     build_info::compiler, build_info::build_type, build_info::version);
+  return fmt::format("machine: {} cores, {} thread{} used; {}, {} build, regodem {}", omp_get_num_procs(), threads,
+                     threads == 1 ? "" : "s", build_info::compiler, build_info::build_type, build_info::version);
 }
 
 void print_table(const RunEstimate& e, int threads) {
@@ -53,8 +53,8 @@ void print_table(const RunEstimate& e, int threads) {
   for (const StageCost& c : e.stages) {
     if (!c.note.empty()) fmt::print("  {}: {}\n", c.name, c.note);
     if (c.sampled && c.sample_particles < c.particles && c.particles - c.sample_particles != shortfall)
-      fmt::print("  {}: sampled on {} of its {} particles (the regions were full at this solid fraction); the "
-                 "prediction scales the rate to the full count\n",
+      fmt::print("  {}: sampled on {} of its {} particles (a region full at this solid fraction, or "
+                 "particles taken out of the walls' way); the prediction scales the rate to the full count\n",
                  c.name, c.sample_particles, c.particles);
     if (c.sampled) shortfall = c.particles - c.sample_particles;
   }

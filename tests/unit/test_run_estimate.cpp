@@ -16,8 +16,18 @@
 namespace regodem {
 namespace {
 
+// Both scenarios' grains: soft, conducting, heat on.
+constexpr const char* kGrains = R"(
+materials:
+  grain: {density: 2500 kg/m^3, shear_modulus: 1e6 Pa, poisson_ratio: 0.25,
+          conductivity: 1 W/(m K), specific_heat: 800 J/(kg K)}
+interactions:
+  - {materials: [grain, grain], restitution: 0.3, sliding_friction: 0.5}
+heat: {}
+)";
+
 // time_step 1e-6 s. Insertions: `first` 100 by count in stage fill; `second` by solid
-// fraction 0.3 of a 10 x 10 x 5 mm box of 1 mm grains: 0.3 x 5e-7 / 5.236e-10 = 286.5
+// fraction 0.3 of a 10 x 10 x 5 mm box of 1 mm grains: 0.3 x 5e-7 / 5.236e-10 = 286.48
 // -> 286, in stage settle; `third` by mass 1e-4 kg of 1 mm and 0.5 mm grains, half
 // each by number, 2500 kg/m^3: mean mass 2500 x (5.236e-10 + 6.545e-11) / 2 =
 // 7.363e-7 kg -> 135.8 -> 136, in stage press.
@@ -26,17 +36,12 @@ namespace {
 // at the stage's start (t = 3 ms, counting settle's bound) it is at -0.7 mm, so 1.7 mm
 // to go = 17 ms = 17000 steps; heat, a static bed, 1 s at a heat step of 0.01 s = 100
 // heat steps; rest, until settled with no max_duration: assumed 0.1 s = 100000 steps.
-constexpr const char* kScenario = R"(
+const std::string kScenario = R"(
 name: estimate-counts
 gravity: [0, 0, -9.81 m/s^2]
 domain: {min: [-10 mm, -10 mm, -10 mm], max: [10 mm, 10 mm, 10 mm]}
 time_step: 1e-6 s
-materials:
-  grain: {density: 2500 kg/m^3, shear_modulus: 1e7 Pa, poisson_ratio: 0.25,
-          conductivity: 1 W/(m K), specific_heat: 800 J/(kg K)}
-interactions:
-  - {materials: [grain, grain], restitution: 0.5, sliding_friction: 0.5}
-heat: {}
+)" + std::string(kGrains) + R"(
 walls:
   - {name: floor, type: plane, point: [0, 0, -10 mm], normal: [0, 0, 1]}
   - name: piston
@@ -103,17 +108,12 @@ TEST(RunEstimate, StageParticlesAndStepsFromThePlan) {
 // A bed of 200 grains placed by the estimate as the run places it (all at once,
 // at rest), 30 ms at 1e-5 s = 3000 steps, then 2 s of heat at 0.05 s = 40 heat steps on
 // the frozen bed.
-constexpr const char* kDenseScenario = R"(
+const std::string kDenseScenario = R"(
 name: estimate-dense
 gravity: [0, 0, -9.81 m/s^2]
 domain: {min: [-5 mm, -5 mm, -1 mm], max: [5 mm, 5 mm, 12 mm]}
 time_step: 1e-5 s
-materials:
-  grain: {density: 2500 kg/m^3, shear_modulus: 1e6 Pa, poisson_ratio: 0.25,
-          conductivity: 1 W/(m K), specific_heat: 800 J/(kg K)}
-interactions:
-  - {materials: [grain, grain], restitution: 0.3, sliding_friction: 0.5}
-heat: {}
+)" + std::string(kGrains) + R"(
 walls:
   - {name: box, type: cylinder, base: [0, 0, 0], radius: 4.5 mm, length: 10 mm}
   - {name: heater, type: plane, point: [0, 0, 0], normal: [0, 0, 1], thermal: {mode: fixed, temperature: 400 K}}

@@ -89,10 +89,22 @@ struct CalibrateOptions {
   int processes = 0;             // 0: the file's `processes`
 };
 
+/// `regodem estimate` (command_estimate.cpp).
+struct EstimateCommandOptions {
+  std::string scenario_path;
+  std::vector<std::string> overrides;  // key.path=value
+  int threads = 0;                     // 0: OpenMP's default
+  std::string json_path;               // empty: no JSON
+  double solid_fraction = 0.6;         // of the geometric beds
+  std::uint64_t sample_steps = 300;    // per stage
+  double sample_seconds = 5.0;         // wall-clock cap of one stage's timed steps
+};
+
 /// Each adds its subcommand (with its options bound to `options`) to `app`.
 CLI::App* add_doe_command(CLI::App& app, DoeOptions& options);
 CLI::App* add_fit_command(CLI::App& app, FitOptions& options);
 CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& options);
+CLI::App* add_estimate_command(CLI::App& app, EstimateCommandOptions& options);
 
 int run_scenario(const RunOptions& options);
 /// Runs on from a checkpoint into options.output_directory (command_run.cpp).
@@ -101,6 +113,7 @@ int resume_run(const ResumeOptions& options);
 int run_doe(const DoeOptions& options);
 int run_fit(const FitOptions& options);
 int run_calibrate(const CalibrateOptions& options);
+int estimate_scenario(const EstimateCommandOptions& options);
 int plot_runs(const PlotOptions& options);
 int validate_scenario(const ValidateOptions& options);
 int print_info();

@@ -848,6 +848,8 @@ RunOutcome PreparedRun::resume(const Checkpoint& checkpoint, RunObserver& observ
 std::vector<std::string> PreparedRun::describe() const { return impl_->description; }
 const Simulation& PreparedRun::simulation() const { return *impl_->simulation; }
 const StagePlan& PreparedRun::plan() const { return impl_->plan; }
+Simulation& PreparedRun::simulation() { return *impl_->simulation; }
+StagePlan& PreparedRun::plan() { return impl_->plan; }
 double PreparedRun::time_step_s() const { return impl_->simulation->time_step_s(); }
 int PreparedRun::threads() const { return impl_->simulation->threads(); }
 

@@ -38,6 +38,9 @@ class PreparedRun {
   const Simulation& simulation() const;
   /// Stages and insertions as the engine will run them.
   const StagePlan& plan() const;
+  /// The built state, to work on without running the plan (`regodem estimate` samples it).
+  Simulation& simulation();
+  StagePlan& plan();
   double time_step_s() const;
   int threads() const;
 

@@ -58,4 +58,16 @@ bool InsertionRegion::sample_centre(Rng& rng, double r, Vec3& centre) const {
   return true;
 }
 
+bool InsertionRegion::contains_sphere(const Vec3& x, double r) const {
+  if (shape == InsertionShape::box)
+    return x.x >= min_m.x + r && x.y >= min_m.y + r && x.z >= min_m.z + r && x.x <= max_m.x - r &&
+           x.y <= max_m.y - r && x.z <= max_m.z - r;
+  const Vec3 offset = x - base_m;
+  const double along = dot(offset, axis);
+  if (along < r || along > length_m - r) return false;
+  const double rho = norm(offset - axis * along);
+  const double inner = shape == InsertionShape::annulus ? inner_radius_m + r : 0.0;
+  return rho <= radius_m - r && (shape != InsertionShape::annulus || rho >= inner);
+}
+
 }  // namespace regodem

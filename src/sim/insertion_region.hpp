@@ -24,6 +24,8 @@ struct InsertionRegion {
   /// A uniformly random centre for a sphere of radius r lying wholly inside; false if
   /// the sphere does not fit at all.
   bool sample_centre(Rng& rng, double radius_m, Vec3& centre_m) const;
+  /// Whether a sphere of radius r at centre_m lies wholly inside.
+  bool contains_sphere(const Vec3& centre_m, double radius_m) const;
 };
 
 }  // namespace regodem

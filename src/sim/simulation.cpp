@@ -219,12 +219,39 @@ void Simulation::remove_lost_particles() {
                  "the time series counts them in 'particles_lost'",
                  time_s_ + settings_.time_step_s, count);
   lost_particle_count_ += count;
-  // Contact history is kept by global id; the bonds of a lost particle go with it
+  drop_particles(lost);
+}
+
+void Simulation::drop_particles(const std::vector<char>& flags) {
+  // Contact history is kept by global id; the bonds of a removed particle go with it
   // (not counted as broken: nothing failed in them).
   neighbors_.save_history(particles);
-  if (!bonds_.empty()) bonds_.remove_with_particles(particles, lost);
-  particles.remove_if(lost);
+  if (!bonds_.empty()) bonds_.remove_with_particles(particles, flags);
+  particles.remove_if(flags);
   rebuild_neighbors(true);
+}
+
+void Simulation::remove_particles(const std::vector<char>& remove_flag) {
+  if (std::find(remove_flag.begin(), remove_flag.end(), 1) == remove_flag.end()) return;
+  if (heat_enabled())
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      if (remove_flag[i]) ledger_.reference_energy_J -= particle_thermal_energy_J(i);
+  drop_particles(remove_flag);
+  forces_current_ = false;
+}
+
+void Simulation::jump_to(double time_s) {
+  if (!(time_s > time_s_)) return;
+  const double from_s = time_s_;
+  const auto pieces = static_cast<std::uint64_t>(
+      std::ceil((time_s - from_s) / std::max(settings_.time_step_s, (time_s - from_s) / 10000.0)));
+  for (std::uint64_t k = 0; k < pieces; ++k) {
+    const double start_s = from_s + (time_s - from_s) * static_cast<double>(k) / static_cast<double>(pieces);
+    const double end_s = from_s + (time_s - from_s) * static_cast<double>(k + 1) / static_cast<double>(pieces);
+    walls.advance(start_s, end_s - start_s);
+  }
+  time_s_ = time_s;
+  forces_current_ = false;
 }
 
 void Simulation::report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const {

@@ -92,6 +92,13 @@ class Simulation {
   void add_particle(const NewParticle& p);
   /// Call after changing the material pair properties (stage overrides).
   void refresh_contact_parameters();
+  /// Removes the flagged particles (flags by index) between steps, with their bonds and
+  /// contact history; their heat leaves the ledger's reference, as for lost particles.
+  void remove_particles(const std::vector<char>& remove_flag);
+  /// Moves the clock forward to time_s without moving the particles, the walls along
+  /// their motions (in up to 10,000 pieces): `regodem estimate` samples a stage where
+  /// its drill will be, on a bed it has built itself. Not for a run.
+  void jump_to(double time_s);
 
   double time_s() const { return time_s_; }
   std::uint64_t step_count() const { return step_; }
@@ -177,6 +184,8 @@ class Simulation {
   void rebuild_neighbors(bool history_saved = false);
   /// Removes the particles outside the domain, their bonds and contact history.
   void remove_lost_particles();
+  /// Removes the flagged particles, their bonds and contact history; rebuilds the lists.
+  void drop_particles(const std::vector<char>& flags);
   /// slip_time_s: dt after a step, 0 when re-evaluating an unchanged state.
   void compute_forces(double slip_time_s);
   /// Returns the largest displacement since the last neighbour build.

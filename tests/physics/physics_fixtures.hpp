@@ -2,7 +2,9 @@
 // Small builders for the physics verification tests: one material, a few walls.
 #include <cmath>
 #include <numbers>
+#include <string>
 
+#include "geometry/triangle_mesh.hpp"
 #include "sim/simulation.hpp"
 #include "sim/time_step.hpp"
 
@@ -78,6 +80,19 @@ inline NewParticle sphere(const Vec3& x, const Vec3& v, double radius, double de
   p.radius_m = radius;
   p.density_kg_per_m3 = density;
   return p;
+}
+
+/// A closed box, wound outwards (12 triangles).
+inline TriangleMesh box_mesh(const Vec3& lo, const Vec3& hi, const std::string& name = "box") {
+  TriangleMeshBuilder builder;
+  const auto corner = [&](int k) { return Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z}; };
+  // Each face as four corners counter-clockwise seen from outside.
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    builder.add_triangle(corner(f[0]), corner(f[1]), corner(f[2]));
+    builder.add_triangle(corner(f[0]), corner(f[2]), corner(f[3]));
+  }
+  return std::move(builder).finish(name);
 }
 
 }  // namespace regodem::testing

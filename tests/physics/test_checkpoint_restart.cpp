@@ -16,16 +16,6 @@ namespace {
 
 constexpr double kRadius = 0.5e-3;
 
-TriangleMesh box_mesh(const Vec3& lo, const Vec3& hi) {
-  TriangleMeshBuilder builder;
-  const auto corner = [&](int k) { return Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z}; };
-  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) {
-    builder.add_triangle(corner(f[0]), corner(f[1]), corner(f[2]));
-    builder.add_triangle(corner(f[0]), corner(f[2]), corner(f[3]));
-  }
-  return std::move(builder).finish("paddle");
-}
 
 Simulation make_bed(int threads) {
   SphereMaterial m;
@@ -43,7 +33,7 @@ Simulation make_bed(int threads) {
   drill.axis_point_m = {0, 0, 0};
   drill.max_travel_m = 0.004;
   const std::uint32_t paddle = walls.add_body("paddle", drill);
-  walls.add_mesh(paddle, box_mesh({-0.0025, -0.0006, 0.0}, {0.0025, 0.0006, 0.004}), 0);
+  walls.add_mesh(paddle, box_mesh({-0.0025, -0.0006, 0.0}, {0.0025, 0.0006, 0.004}, "paddle"), 0);
   SimulationSettings settings = settings_for(kRadius, dt, {0, 0, -9.81}, 0.02, threads);
   settings.min_particles_per_thread = 100;  // both threads work on this small bed
   settings.heat.enabled = true;

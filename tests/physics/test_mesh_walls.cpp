@@ -32,18 +32,6 @@ TriangleMesh square_mesh(double half_side_m, int cells) {
   return std::move(builder).finish("square");
 }
 
-/// A closed box, wound outwards (12 triangles).
-TriangleMesh box_mesh(const Vec3& lo, const Vec3& hi) {
-  TriangleMeshBuilder builder;
-  const auto corner = [&](int k) { return Vec3{k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z}; };
-  // Each face as four corners counter-clockwise seen from outside.
-  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& f : faces) {
-    builder.add_triangle(corner(f[0]), corner(f[1]), corner(f[2]));
-    builder.add_triangle(corner(f[0]), corner(f[2]), corner(f[3]));
-  }
-  return std::move(builder).finish("box");
-}
 
 /// A closed cylinder about the z axis from z0 to z1, `sides` facets, wound outwards.
 TriangleMesh cylinder_mesh(double radius_m, double z0, double z1, int sides) {

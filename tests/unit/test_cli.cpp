@@ -553,4 +553,51 @@ TEST_F(CliTest, PaperMatchingCellChainRunsEndToEnd) {
   EXPECT_LT(achieved_K, 973.15);
 }
 
+// The paper's drilling models (scenarios/paper/tiny: the reduced files' stages in a 16 mm
+// barrel): the multi-level bed drilled with and without its sieve, and the single-size
+// bed, as a user chains them. Sanity, not results: every temperature between the coldest
+// boundary (the grains and sieve at -196 degC) and the hottest (the drill at -100 degC),
+// the energy ledger closed, heat flowing from the drill into the grains, bonds formed,
+// the drill at its depth, and cuttings in the chip-removal zone once it has drilled,
+// warmed by the drill.
+TEST_F(CliTest, PaperDrillingChainRunsEndToEnd) {
+  const fs::path tiny = directory_;
+  for (const auto& entry : fs::directory_iterator(fs::path(REGODEM_SOURCE_DIR) / "scenarios" / "paper" / "tiny"))
+    if (entry.path().extension() == ".yaml") fs::copy_file(entry.path(), tiny / entry.path().filename());
+  const auto run = [&](const std::string& file, const fs::path& output) {
+    const CommandResult r = run_regodem({"run", (tiny / file).string(), "-o", output.string(), "--threads", "1"});
+    EXPECT_EQ(r.exit_code, 0) << file << "\n" << r.output;
+    return r.exit_code == 0;
+  };
+  ASSERT_TRUE(run("drill-bed.yaml", directory_ / "out" / "bed"));
+  ASSERT_TRUE(run("drill-single-size-bed.yaml", directory_ / "out" / "single-bed"));
+  const double cold_K = 77.15, drill_K = 173.15;
+  for (const std::string model : {"drill-sieve", "drill-nosieve", "drill-single-size"}) {
+    const fs::path output = directory_ / model;
+    ASSERT_TRUE(run(model + ".yaml", output));
+    const nlohmann::json summary = nlohmann::json::parse(read_file(output / "summary.json"));
+    EXPECT_GT(summary["bonds"]["formed"].get<int>(), 0) << model;
+    const std::map<std::string, double> row = last_row(output / "time_series.csv");
+    EXPECT_NEAR(row.at("drill.depth [m]"), 0.005, 1e-9) << model;
+    EXPECT_GE(row.at("temperature_min [K]"), cold_K - 1e-9) << model;
+    EXPECT_LE(row.at("temperature_max [K]"), drill_K + 1e-9) << model;
+    EXPECT_GT(row.at("drill.heat_to_particles [J]"), 0.0) << model;
+    EXPECT_LT(std::abs(row.at("energy_imbalance [-]")), 1e-9) << model;
+    if (model == "drill-sieve")
+      for (const std::string segment : {"sieve[1]", "sieve[2]", "sieve[3]"}) {
+        EXPECT_GE(row.at(segment + ".temperature [K]"), cold_K - 1e-9) << segment;
+        EXPECT_LE(row.at(segment + ".temperature [K]"), drill_K + 1e-9) << segment;
+      }
+    // The chip zone, sampled every 1 mm of depth from -1 mm: empty before the tip
+    // reaches the surface, holding cuttings warmed by the drill at the end.
+    const std::vector<std::string> chip = read_lines(output / "regions" / "chip_zone.csv");
+    ASSERT_GE(chip.size(), 1u + 7u) << model;
+    EXPECT_EQ(split_csv_line(chip[1]).at(5), "0") << model;
+    const nlohmann::json& chip_final = summary["measurements"]["regions"]["chip_zone"]["final"];
+    EXPECT_GT(chip_final["count"].get<int>(), 0) << model;
+    EXPECT_GT(chip_final["temperature_mean_K"].get<double>(), cold_K + 1.0) << model;
+    EXPECT_LE(chip_final["temperature_max_K"].get<double>(), drill_K + 1e-9) << model;
+  }
+}
+
 }  // namespace

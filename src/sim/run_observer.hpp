@@ -62,8 +62,10 @@ class RunObserver {
   /// Called once before the first stage with the time-series columns.
   virtual void columns(const std::vector<SeriesColumn>& /*columns*/) {}
   virtual void stage_started(const StageInfo& /*stage*/) {}
-  /// Called every few hundred steps; the observer decides how often to show it.
+  /// Called every progress_interval_s() of wall time; the observer decides how often to show it.
   virtual void progress(const ProgressSnapshot& /*snapshot*/) {}
+  /// Wall seconds between progress() calls (checked at step boundaries).
+  virtual double progress_interval_s() const { return 0.25; }
   /// One row of the time series, values in the order of columns().
   virtual void sample(const std::vector<double>& /*row*/) {}
   /// A snapshot (ParaView files) is due by the plan's SnapshotSchedule: the observer

@@ -22,7 +22,6 @@ double seconds_since(Clock::time_point start) {
 }
 
 constexpr std::uint64_t kCheckEverySteps = 64;
-constexpr double kProgressEveryWallSeconds = 0.25;
 
 /// Applies a stage's overrides to the pair table; returns the table to restore.
 MaterialTable apply_overrides(Simulation& sim, const std::vector<PairOverride>& overrides) {
@@ -326,6 +325,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       while (next_sample_s <= sim.time_s() + 0.5 * step_s) next_sample_s += sample_interval;
     };
     const auto stage_clock = Clock::now();
+    const std::uint64_t done_at_stage_clock = done;  // a resumed stage times only its own steps
     // A checkpoint at the top of an iteration: resuming replays that iteration's
     // insertions, sample and snapshot checks, which are no longer due.
     auto checkpoint_here = [&](CheckpointReason reason) {
@@ -403,11 +403,12 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           }
           if (observer.checkpoint_due()) checkpoint_here(CheckpointReason::periodic);
           const double since = seconds_since(last_progress_clock);
-          if (since >= kProgressEveryWallSeconds) {
+          if (since >= observer.progress_interval_s()) {
             steps_per_s = static_cast<double>(done - last_progress_step) / since;
             // The time left uses the stage's average rate, which does not jump about.
             const double stage_wall = seconds_since(stage_clock);
-            const double stage_rate = stage_wall > 0.0 ? static_cast<double>(done) / stage_wall : 0.0;
+            const double stage_rate =
+                stage_wall > 0.0 ? static_cast<double>(done - done_at_stage_clock) / stage_wall : 0.0;
             last_progress_clock = Clock::now();
             last_progress_step = done;
             ProgressSnapshot snap;

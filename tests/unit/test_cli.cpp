@@ -570,6 +570,7 @@ TEST_F(CliTest, PaperDrillingChainRunsEndToEnd) {
     return r.exit_code == 0;
   };
   ASSERT_TRUE(run("drill-bed.yaml", directory_ / "out" / "bed"));
+  ASSERT_TRUE(run("drill-nosieve-bed.yaml", directory_ / "out" / "nosieve-bed"));
   ASSERT_TRUE(run("drill-single-size-bed.yaml", directory_ / "out" / "single-bed"));
   const double cold_K = 77.15, drill_K = 173.15;
   for (const std::string model : {"drill-sieve", "drill-nosieve", "drill-single-size"}) {

@@ -109,8 +109,8 @@ class ProgressRecorder : public Recorder {
 // The time left after a resume comes from the steps timed since the resume: counting the
 // steps done before the checkpoint against the wall time since it (a bug once) made the
 // estimate after stopping at 80 % of a stage 5x too short. Late in the resumed part,
-// estimate x steps timed / steps left is the wall time of the resumed stage (within the
-// run's set-up before it, a fraction of a millisecond against the 20 % of the stage).
+// estimate x steps timed / steps left is the wall time of the resumed stage, a little
+// under the report's wall_s, which also counts the run's set-up before the stage.
 TEST(StageResume, TimeLeftCountsOnlyTheResumedSteps) {
   const ScenarioSpec spec = small_scenario();
   std::atomic<bool> stop{false};

@@ -40,8 +40,8 @@ StaticHeatStepper::StaticHeatStepper(Simulation& sim, const Stage& stage)
   if (!std::isfinite(time_step_s_)) time_step_s_ = stage.duration_s > 0.0 ? stage.duration_s : 1.0;  // nothing conducts
   for (std::size_t m = 0; m < sim.materials.size(); ++m) {
     const Material& mat = sim.materials[static_cast<MaterialIndex>(m)];
-    properties_vary_ = properties_vary_ || !mat.specific_heat_J_per_kgK.is_constant() ||
-                       !mat.conductivity_W_per_mK.is_constant();
+    specific_heat_varies_ = specific_heat_varies_ || !mat.specific_heat_J_per_kgK.is_constant();
+    properties_vary_ = properties_vary_ || specific_heat_varies_ || !mat.conductivity_W_per_mK.is_constant();
   }
 }
 
@@ -52,6 +52,22 @@ void StaticHeatStepper::refresh_values() {
   for (std::size_t e = 0; e < net.edges.size(); ++e) edge_g[e] = net.edges[e].conductance_W_per_K;
   for (std::size_t l = 0; l < net.boundary_links.size(); ++l) link_g[l] = net.boundary_links[l].conductance_W_per_K;
   solver_.update_values(net.heat_capacity_J_per_K, edge_g, link_g);
+}
+
+void StaticHeatStepper::add_energy_to_enthalpy() {
+  // The solve's C_i (T_i^{n+1} - T_i^n) is the energy node i took in the step, and these
+  // sum to the heat through the fixed walls. With C_i = m_i c(T_i^n) frozen over the step,
+  // reading T^{n+1} off the linear solve would let sum m h(T) drift by ~ m c' dT^2 / 2 a
+  // step; adding the energy to the enthalpy, T = h^-1(h(T^n) + C_i dT_i / m_i), keeps it
+  // exactly, as the coupled update does. Lumped walls have a constant C_w: nothing to do.
+  const ParticleStore& p = sim_.particles;
+  const std::vector<double>& capacity_J_per_K = solver_.network().heat_capacity_J_per_K;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const TemperatureCurve& c = sim_.materials[p.material[i]].specific_heat_J_per_kgK;
+    if (c.is_constant()) continue;  // C is exact: the solve's temperature already conserves energy
+    const double energy_per_mass = capacity_J_per_K[i] * (node_temperature_K_[i] - p.temperature_K[i]) / p.mass_kg[i];
+    node_temperature_K_[i] = c.inverse_integral(c.integral_from_zero(p.temperature_K[i]) + energy_per_mass);
+  }
 }
 
 void StaticHeatStepper::advance(double dt_s) {
@@ -71,6 +87,7 @@ void StaticHeatStepper::advance(double dt_s) {
     }
   }
   const StaticStepReport report = solver_.step(dt_s, node_temperature_K_, boundary_start_K_, boundary_end_K_);
+  if (specific_heat_varies_) add_energy_to_enthalpy();
 
   if (const HeatSettings& heat = sim_.settings().heat; heat.track_thermal_history) {
     ParticleStore& p = sim_.particles;

@@ -7,7 +7,9 @@
 // the theta method (explicit 0, backward Euler 1, Crank-Nicolson 1/2) is
 //   (C/dt + theta L) T^{n+1} = (C/dt - (1 - theta) L) T^n + theta s^{n+1} + (1 - theta) s^n.
 // The edges cancel in sum_i, so the nodes' energy sum C_i T_i changes by exactly the
-// heat the links pass, evaluated the same way; the report gives it per boundary.
+// heat the links pass, evaluated the same way; the report gives it per boundary. With c(T)
+// the caller takes C at the step's start and reads C_i dT_i as node i's energy, to add to
+// its enthalpy (StaticHeatStepper), so energy is kept however C varies.
 //
 // The implicit matrix is symmetric positive definite. Two ways to solve it, measured on
 // a 1e5-node random 3-D network (numbers in static_bed_solver.cpp): Jacobi-preconditioned

@@ -1,5 +1,7 @@
 #pragma once
-// Small builders for the physics verification tests: one material, a few walls.
+// Small builders for the physics verification tests: one or two materials, a few walls.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -51,6 +53,58 @@ inline MaterialTable one_material(const SphereMaterial& m) {
   return table;
 }
 
+/// Two materials, a (index 0) and b (index 1), each with its own pair properties, and
+/// `between` for an a-b contact (a wall names its material like a particle).
+inline MaterialTable two_materials(const SphereMaterial& a, const SphereMaterial& b, const PairProperties& between) {
+  MaterialTable table;
+  for (const SphereMaterial* m : {&a, &b}) {
+    Material material;
+    material.name = m == &a ? "a" : "b";
+    material.density_kg_per_m3 = m->density;
+    material.shear_modulus_Pa = m->shear_modulus;
+    material.poisson_ratio = m->poisson;
+    material.conductivity_W_per_mK = TemperatureCurve(m->conductivity);
+    material.specific_heat_J_per_kgK = TemperatureCurve(m->specific_heat);
+    material.real_shear_modulus_Pa = m->real_shear_modulus;
+    table.add(material);
+  }
+  for (const MaterialIndex i : {MaterialIndex{0}, MaterialIndex{1}}) {
+    const SphereMaterial& m = i == 0 ? a : b;
+    PairProperties own;
+    own.restitution = m.restitution;
+    own.sliding_friction = m.sliding_friction;
+    own.rolling_friction = m.rolling_friction;
+    table.set_pair(i, i, own);
+  }
+  table.set_pair(0, 1, between);
+  return table;
+}
+
+/// The mixing of docs/physics.md ("Mixing"), written out here independently of the
+/// contact code: E = 2G(1 + nu), 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b.
+inline double mixed_youngs_modulus(double shear_a_Pa, double poisson_a, double shear_b_Pa, double poisson_b) {
+  const double youngs_a = 2.0 * shear_a_Pa * (1.0 + poisson_a), youngs_b = 2.0 * shear_b_Pa * (1.0 + poisson_b);
+  return 1.0 / ((1.0 - poisson_a * poisson_a) / youngs_a + (1.0 - poisson_b * poisson_b) / youngs_b);
+}
+
+/// E* of a contact between materials a and b at their simulated moduli.
+inline double effective_youngs_modulus(const SphereMaterial& a, const SphereMaterial& b) {
+  return mixed_youngs_modulus(a.shear_modulus, a.poisson, b.shear_modulus, b.poisson);
+}
+
+/// E*_real: each body's real modulus where it gives one, its simulated one otherwise.
+inline double effective_real_youngs_modulus(const SphereMaterial& a, const SphereMaterial& b) {
+  const auto real = [](const SphereMaterial& m) {
+    return m.real_shear_modulus > 0.0 ? m.real_shear_modulus : m.shear_modulus;
+  };
+  return mixed_youngs_modulus(real(a), a.poisson, real(b), b.poisson);
+}
+
+/// 1/G* = (2 - nu_a)/G_a + (2 - nu_b)/G_b.
+inline double effective_shear_modulus(const SphereMaterial& a, const SphereMaterial& b) {
+  return 1.0 / ((2.0 - a.poisson) / a.shear_modulus + (2.0 - b.poisson) / b.shear_modulus);
+}
+
 inline double rayleigh_time_for(const SphereMaterial& m, double radius) {
   return rayleigh_time_s(radius, m.density, m.shear_modulus, m.poisson);
 }
@@ -80,6 +134,14 @@ inline NewParticle sphere(const Vec3& x, const Vec3& v, double radius, double de
   p.radius_m = radius;
   p.density_kg_per_m3 = density;
   return p;
+}
+
+/// The store index of the particle with this id (neighbour rebuilds re-sort the store).
+inline std::size_t index_of(const Simulation& sim, ParticleId id) {
+  for (std::size_t i = 0; i < sim.particles.size(); ++i)
+    if (sim.particles.id[i] == id) return i;
+  ADD_FAILURE() << "no particle " << id;
+  return 0;
 }
 
 /// A closed box, wound outwards (12 triangles).

@@ -10,10 +10,11 @@
 #include "contact/mindlin_tangential.hpp"
 #include "contact/restitution_damping.hpp"
 #include "contact/rolling_constant_torque.hpp"
+#include "contact/rolling_own_spin.hpp"
 
 namespace regodem {
 
-template <class Normal, class Damping, class Tangential, class Rolling>
+template <class Normal, class Damping, class Tangential, class RelativeRolling, class OwnSpinRolling>
 struct ContactLaw {
   /// Forces of one contact in overlap; updates the tangential history.
   [[gnu::always_inline]] static ContactForces evaluate(const ContactPairParameters& p, const ContactGeometry& c,
@@ -43,14 +44,24 @@ struct ContactLaw {
     out.sliding_power_W = sliding ? std::abs(dot(tangential, tangential_velocity)) : 0.0;
     out.tangential_force_on_i_N = tangential;
     out.force_on_i_N = tangential - normal_force * c.normal;
-    out.rolling_torque_on_i_N_m = Rolling::evaluate(
-        c.relative_angular_velocity_rad_per_s, c.normal, p.rolling_friction, normal.elastic_force_N,
-        c.effective_radius_m, c.inv_inertia_sum, c.time_step_s);
+    // Rolling: chosen per material pair (EDEM's own-spin model, or the relative spin).
+    if (p.rolling_model == RollingModel::own_spin) {
+      out.own_spin_resistance_i_N_m =
+          OwnSpinRolling::resistance_N_m(p.rolling_friction, normal.elastic_force_N, c.contact_arm_i_m);
+      out.own_spin_resistance_j_N_m =
+          OwnSpinRolling::resistance_N_m(p.rolling_friction, normal.elastic_force_N, c.contact_arm_j_m);
+    } else {
+      out.rolling_torque_on_i_N_m = RelativeRolling::evaluate(
+          c.angular_velocity_i_rad_per_s - c.angular_velocity_j_rad_per_s, c.normal, p.rolling_friction,
+          normal.elastic_force_N, c.effective_radius_m, c.inv_inertia_i + c.inv_inertia_j, c.time_step_s);
+    }
     return out;
   }
 };
 
-/// The paper's law: Hertz-Mindlin no-slip with restitution damping and CDT rolling.
-using HertzMindlinLaw = ContactLaw<HertzNormal, RestitutionDamping, MindlinTangential, RollingConstantTorque>;
+/// The paper's law: Hertz-Mindlin no-slip with restitution damping and constant-torque
+/// rolling (on the relative spin, or EDEM's on each body's own).
+using HertzMindlinLaw =
+    ContactLaw<HertzNormal, RestitutionDamping, MindlinTangential, RollingConstantTorque, RollingOwnSpin>;
 
 }  // namespace regodem

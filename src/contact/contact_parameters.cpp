@@ -20,14 +20,13 @@ ContactParameterTable::ContactParameterTable(const MaterialTable& materials)
       const PairProperties& pair =
           materials.pair(static_cast<MaterialIndex>(a), static_cast<MaterialIndex>(b));
       ContactPairParameters& p = table_[a * n_ + b];
-      p.effective_youngs_modulus_Pa =
-          1.0 / ((1.0 - ma.poisson_ratio * ma.poisson_ratio) / ma.youngs_modulus_Pa() +
-                 (1.0 - mb.poisson_ratio * mb.poisson_ratio) / mb.youngs_modulus_Pa());
+      p.effective_youngs_modulus_Pa = effective_youngs_modulus_Pa(ma, mb);
       p.effective_shear_modulus_Pa = 1.0 / ((2.0 - ma.poisson_ratio) / ma.shear_modulus_Pa +
                                             (2.0 - mb.poisson_ratio) / mb.shear_modulus_Pa);
       p.damping_factor = restitution_damping_factor(pair.restitution);
       p.sliding_friction = pair.sliding_friction;
       p.rolling_friction = pair.rolling_friction;
+      p.rolling_model = pair.rolling_model;
       p.clamp_attractive_normal_force = pair.clamp_attractive_normal_force;
     }
   }

@@ -13,6 +13,7 @@ struct ContactPairParameters {
   double damping_factor = 0.0;               // 2 sqrt(5/6) |beta|, beta = ln e / sqrt(ln^2 e + pi^2)
   double sliding_friction = 0.0;
   double rolling_friction = 0.0;
+  RollingModel rolling_model = RollingModel::relative_spin;
   bool clamp_attractive_normal_force = false;
 };
 

@@ -1,7 +1,8 @@
 #pragma once
-// Constant directional torque rolling friction (DESIGN.md section 2): with omega_r the
-// relative angular velocity less its normal component, the torque on i is
-// -mu_r F_n^e R* omega_r/|omega_r|. It is capped so that on its own it cannot reverse
+// Constant directional torque rolling friction on the relative spin (DESIGN.md section 2;
+// Ai et al. 2011 type A, LIGGGHTS `rolling_friction cdt`): with omega_r the relative
+// angular velocity less its normal component, the torque on i is
+// -mu_r F_n^e R* omega_r/|omega_r|, and j feels the opposite. It is capped so that on its own it cannot reverse
 // omega_r within one step (|tau| <= |omega_r| / (dt (1/I_i + 1/I_j))), which removes
 // the chatter of a body at rest.
 #include <algorithm>

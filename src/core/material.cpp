@@ -1,6 +1,22 @@
 #include "core/material.hpp"
 
 namespace regodem {
+namespace {
+
+double mixed_modulus_Pa(const Material& a, double youngs_a_Pa, const Material& b, double youngs_b_Pa) {
+  return 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / youngs_a_Pa +
+                (1.0 - b.poisson_ratio * b.poisson_ratio) / youngs_b_Pa);
+}
+
+}  // namespace
+
+double effective_youngs_modulus_Pa(const Material& a, const Material& b) {
+  return mixed_modulus_Pa(a, a.youngs_modulus_Pa(), b, b.youngs_modulus_Pa());
+}
+
+double effective_real_youngs_modulus_Pa(const Material& a, const Material& b) {
+  return mixed_modulus_Pa(a, a.real_youngs_modulus_Pa(), b, b.real_youngs_modulus_Pa());
+}
 
 MaterialIndex MaterialTable::add(const Material& m) {
   const std::size_t old_n = materials_.size();

@@ -28,6 +28,13 @@ struct Material {
   }
 };
 
+/// 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b: the mechanics' E* (simulated moduli). A
+/// wall has the same formula with its material's constants (DESIGN.md section 2).
+double effective_youngs_modulus_Pa(const Material& a, const Material& b);
+/// The same with each material's real modulus (its simulated one where it gives none):
+/// what the force law's contact radius uses (paper Eq. 1).
+double effective_real_youngs_modulus_Pa(const Material& a, const Material& b);
+
 /// How a contact conducts heat (G = conductance, Q_ij = G (T_j - T_i)), per material pair:
 ///  force:  G = 2 k_c a, a = (3 F_n^e R* / (4 E*_real))^(1/3)  (the paper's Eq. 1, EDEM)
 ///  radius: G = 2 k_c a, a = sqrt(R* delta_n)                   (LAMMPS "heat radius")
@@ -35,11 +42,19 @@ struct Material {
 ///  none:   no conduction.
 enum class ConductionLaw : std::uint8_t { force, radius, area, none };
 
+/// Which spin rolling friction resists, per material pair:
+///  relative_spin: the relative spin less its normal part, with R* (Ai et al. 2011 type A;
+///                 LIGGGHTS cdt); j feels the opposite torque.
+///  own_spin:      each body its own spin, with its own distance to the contact point
+///                 (EDEM's standard rolling friction, which the paper ran).
+enum class RollingModel : std::uint8_t { relative_spin, own_spin };
+
 /// What the scenario says about two materials in contact (DESIGN.md section 2).
 struct PairProperties {
   double restitution = 0.5;
   double sliding_friction = 0.5;
   double rolling_friction = 0.0;
+  RollingModel rolling_model = RollingModel::relative_spin;
   bool clamp_attractive_normal_force = false;  // EDEM default: no clamping
   ConductionLaw conduction = ConductionLaw::force;
   double heat_transfer_coefficient_W_per_m2K = 0.0;  // the area law's h

@@ -78,6 +78,10 @@ MaterialSpec read_material(const std::string& name, const YamlValue& value) {
   // The modulus of the real material, when the simulated one is reduced for a larger
   // time step: conduction's contact radius uses it. Either form, like the modulus.
   if (const auto real_key = section->at_most_one_of({"real_shear_modulus", "real_youngs_modulus"})) {
+    material.real_modulus_stated = true;
+    // `same`: the simulated modulus is the real one (a wall given its real stiffness).
+    const auto given = section->get(*real_key);
+    if (given && given->node().IsScalar() && given->node().Scalar() == "same") return material;
     const auto real = read_checked_quantity(*section, *real_key, Dimension::pressure,
                                             Presence::required, is_positive, "be greater than 0");
     if (real && poisson) {
@@ -171,7 +175,7 @@ void read_interactions(const YamlSection& root, const ScenarioReferences& refere
     const auto section = item.section();
     if (!section) continue;
     section->allow_only({"materials", "restitution", "sliding_friction", "rolling_friction",
-                         "clamp_attractive_normal_force", "conduction",
+                         "rolling_model", "clamp_attractive_normal_force", "conduction",
                          "heat_transfer_coefficient"});
     InteractionSpec interaction;
     interaction.where = item.where();
@@ -189,14 +193,17 @@ void read_interactions(const YamlSection& root, const ScenarioReferences& refere
     const auto rolling =
         read_checked_quantity(*section, "rolling_friction", Dimension::dimensionless,
                               Presence::optional, is_non_negative, "be 0 or more");
+    std::optional<std::string> rolling_model = std::string("relative_spin");
+    if (const auto model = section->get("rolling_model")) rolling_model = model->choice({"relative_spin", "own_spin"});
     const auto clamp = section->boolean("clamp_attractive_normal_force");
     const bool conduction_read = read_conduction(*section, interaction);
-    if (!pair || !restitution || !sliding || !conduction_read) continue;
+    if (!pair || !restitution || !sliding || !rolling_model || !conduction_read) continue;
     interaction.material_a = pair->first;
     interaction.material_b = pair->second;
     interaction.restitution = *restitution;
     interaction.sliding_friction = *sliding;
     interaction.rolling_friction = rolling.value_or(0.0);
+    interaction.rolling_own_spin = *rolling_model == "own_spin";
     interaction.clamp_attractive_normal_force = clamp.value_or(false);
 
     const auto earlier = std::find_if(spec.interactions.begin(), spec.interactions.end(),

@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/particle_csv_reader.hpp"
+#include "scenario/conduction_pairs.hpp"
 #include "sim/simulation.hpp"
 #include "sim/stage_plan.hpp"
 #include "sim/stage_runner.hpp"
@@ -63,6 +64,7 @@ void fill_pair_table(MaterialTable& table, const ScenarioSpec& spec, const std::
     p.restitution = in.restitution;
     p.sliding_friction = in.sliding_friction;
     p.rolling_friction = in.rolling_friction;
+    p.rolling_model = in.rolling_own_spin ? RollingModel::own_spin : RollingModel::relative_spin;
     p.clamp_attractive_normal_force = in.clamp_attractive_normal_force;
     p.conduction = conduction_law(in.conduction);
     p.heat_transfer_coefficient_W_per_m2K = in.heat_transfer_coefficient_W_per_m2K;
@@ -640,6 +642,11 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
 
   WallSet walls;
   std::vector<ThermalWall> wall_thermal;
+  std::vector<ConductingWall> conducting_walls;
+  const auto conducting = [&](const WallSpec& w, MaterialIndex material, const ThermalWall& t) {
+    if (t.mode != WallThermalMode::adiabatic)
+      conducting_walls.push_back({w.name, material, t.conductivity_W_per_mK, t.mix == WallConductivityMix::harmonic_mean});
+  };
   for (const WallSpec& w : spec.walls) {
     const MaterialIndex material =
         w.material.empty() ? MaterialIndex{0} : material_index(materials, w.material, w.where);
@@ -663,6 +670,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
       }
       if (spec.heat.enabled)
         lines.push_back(describe_thermal_wall(w, first, n, wall_thermal.back().heat_capacity_J_per_K));
+      conducting(w, material, first);
       continue;
     }
     const std::uint32_t body = walls.add_body(w.name, motion);
@@ -700,7 +708,11 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     }
     wall_thermal.push_back(thermal_wall(spec, w, area));
     if (spec.heat.enabled) lines.push_back(describe_thermal_wall(w, wall_thermal.back(), 1, 0.0));
+    conducting(w, material, wall_thermal.back());
   }
+  if (spec.heat.enabled)
+    for (std::string& line : conduction_pair_lines(spec, materials, particle_material, conducting_walls))
+      lines.push_back(std::move(line));
   lines.push_back(fmt::format("walls: {} ({} analytic primitives)", walls.bodies.size(), walls.primitives.size()));
 
   impl.rayleigh_time_s = min_rayleigh;

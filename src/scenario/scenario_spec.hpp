@@ -45,6 +45,10 @@ struct MaterialSpec {
   std::optional<TemperatureCurveSpec> conductivity_W_per_mK;
   std::optional<TemperatureCurveSpec> specific_heat_J_per_kgK;
   double real_shear_modulus_Pa = 0.0;  // 0: none (conduction uses shear_modulus_Pa)
+  // The file says what conduction's modulus is: a real_shear_modulus (or
+  // real_youngs_modulus) value, or `same` (shear_modulus is the real one). A scenario
+  // that gives any material a real modulus must say it of every conducting one.
+  bool real_modulus_stated = false;
   SourceLocation where;
 };
 
@@ -68,6 +72,7 @@ struct InteractionSpec {
   double restitution = 0.5;
   double sliding_friction = 0.5;
   double rolling_friction = 0.0;
+  bool rolling_own_spin = false;  // rolling_model: own_spin (EDEM's standard) or relative_spin (default)
   bool clamp_attractive_normal_force = false;
   ConductionLawSpec conduction = ConductionLawSpec::force;
   double heat_transfer_coefficient_W_per_m2K = 0.0;  // area law only (required there)

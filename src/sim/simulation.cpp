@@ -327,6 +327,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const double* __restrict temperature = particles.temperature_K.data();
   const double* __restrict conductivity = particles.conductivity_W_per_mK.data();
   double* __restrict heat = particles.heat_flow_W.data();
+  own_spin_resistance_N_m_.resize(particles.size());
+  double* __restrict own_spin = own_spin_resistance_N_m_.data();
   const bool friction_heating = settings_.heat.friction_heating;
   const double wall_partition = settings_.heat.friction_partition;  // the particle's share at a wall
   // Taken once per pass into a member buffer: no allocation per step.
@@ -342,6 +344,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     for (std::uint32_t i = begin; i < end; ++i) {
       force[i] = gravity * mass[i];
       torque[i] = {};
+      own_spin[i] = 0.0;
       if constexpr (Heat) heat[i] = 0.0;
     }
     std::vector<double>& wall_conduction = wall_conduction_by_thread_[t];
@@ -367,6 +370,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       const double ri = radius[i], inv_mi = inv_mass[i], inv_ii = inv_inertia[i];
       const MaterialIndex mat_i = material[i];
       Vec3 force_i, torque_i;
+      double own_spin_i = 0.0;
       double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
       if constexpr (Heat) {
         temperature_i = temperature[i];
@@ -395,10 +399,14 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         c.normal = normal;
         c.overlap_m = overlap;
         c.effective_radius_m = ri * rj / sum_r;
-        c.effective_mass_kg = 1.0 / (inv_mi + inv_mass[j]);
+        c.effective_mass_kg = effective_mass_kg(inv_mi + inv_mass[j]);
         c.relative_velocity_m_per_s = vi - v[j] + cross(wi * arm_i + wj * arm_j, normal);
-        c.relative_angular_velocity_rad_per_s = wi - wj;
-        c.inv_inertia_sum = inv_ii + inv_inertia[j];
+        c.angular_velocity_i_rad_per_s = wi;
+        c.angular_velocity_j_rad_per_s = wj;
+        c.contact_arm_i_m = arm_i;
+        c.contact_arm_j_m = arm_j;
+        c.inv_inertia_i = inv_ii;
+        c.inv_inertia_j = inv_inertia[j];
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
         const MaterialIndex mat_j = material[j];
@@ -406,6 +414,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         const Vec3 lever = cross(normal, f.tangential_force_on_i_N);
         force_i += f.force_on_i_N;
         torque_i += lever * arm_i + f.rolling_torque_on_i_N_m;
+        own_spin_i += f.own_spin_resistance_i_N_m;
         const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
         double heat_j = 0.0;
         if constexpr (Heat) {
@@ -425,9 +434,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         if (j >= begin && j < end) {
           force[j] -= f.force_on_i_N;
           torque[j] += torque_j;
+          own_spin[j] += f.own_spin_resistance_j_N_m;
           if constexpr (Heat) heat[j] += heat_j;
         } else {
-          spill.push_back({j, -f.force_on_i_N, torque_j, heat_j});
+          spill.push_back({j, -f.force_on_i_N, torque_j, heat_j, f.own_spin_resistance_j_N_m});
         }
       }
 
@@ -441,11 +451,13 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         c.normal = normal;
         c.overlap_m = ri - distance_m;
         c.effective_radius_m = ri;
-        c.effective_mass_kg = 1.0 / inv_mi;
+        c.effective_mass_kg = effective_mass_kg(inv_mi);
         c.relative_velocity_m_per_s =
             vi + cross(wi, normal * distance_m) - motion.surface_velocity(contact_point_m, now);
-        c.relative_angular_velocity_rad_per_s = wi - wall_omega;
-        c.inv_inertia_sum = inv_ii;
+        c.angular_velocity_i_rad_per_s = wi;
+        c.angular_velocity_j_rad_per_s = wall_omega;
+        c.contact_arm_i_m = distance_m;
+        c.inv_inertia_i = inv_ii;
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
         const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, wall_material), c, wall_spring);
@@ -467,6 +479,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         }
         force_i += f.force_on_i_N;
         torque_i += cross(normal, f.tangential_force_on_i_N) * distance_m + f.rolling_torque_on_i_N_m;
+        // EDEM's own-spin rolling torque is not booked on the wall (its default: the wall
+        // torque would depend on the mesh size); the relative-spin one is, as a reaction.
+        own_spin_i += f.own_spin_resistance_i_N_m;
         wall_force[body] -= f.force_on_i_N;
         wall_torque[body] +=
             cross(contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
@@ -498,6 +513,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       }
       force[i] += force_i;
       torque[i] += torque_i;
+      own_spin[i] += own_spin_i;
       if constexpr (Heat) heat[i] += heat_i;
     }
     friction_power_by_thread_[t] = friction_power;
@@ -509,8 +525,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         if (e.particle >= begin && e.particle < end) {
           force[e.particle] += e.force_N;
           torque[e.particle] += e.torque_N_m;
+          own_spin[e.particle] += e.own_spin_resistance_N_m;
           if constexpr (Heat) heat[e.particle] += e.heat_W;
         }
+    // EDEM's own-spin rolling, once each particle's resistance is summed (RollingOwnSpin).
+    for (std::uint32_t i = begin; i < end; ++i)
+      if (own_spin[i] > 0.0) torque[i] += RollingOwnSpin::torque(w[i], own_spin[i], inv_inertia[i], dt);
   }
 
   for (std::size_t b = 0; b < n_bodies; ++b) {

@@ -219,8 +219,11 @@ class Simulation {
     std::uint32_t particle;
     Vec3 force_N, torque_N_m;
     double heat_W;
+    double own_spin_resistance_N_m;
   };
   std::vector<std::vector<Spill>> spills_;
+  // Per particle, each contact pass: the summed own-spin rolling resistance (RollingOwnSpin).
+  std::vector<double> own_spin_resistance_N_m_;
   struct MeshScratch {  // per thread
     MeshTouchFinder finder;
     std::vector<MeshTouch> touches;

@@ -3,15 +3,6 @@
 #include <numbers>
 
 namespace regodem {
-namespace {
-
-/// 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b for the given Young's moduli.
-double effective_modulus_Pa(const Material& a, double youngs_a_Pa, const Material& b, double youngs_b_Pa) {
-  return 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / youngs_a_Pa +
-                (1.0 - b.poisson_ratio * b.poisson_ratio) / youngs_b_Pa);
-}
-
-}  // namespace
 
 ConductionParameterTable::ConductionParameterTable(const MaterialTable& materials, double time_scale_factor)
     : n_(materials.size()), table_(n_ * n_) {
@@ -28,9 +19,8 @@ ConductionParameterTable::ConductionParameterTable(const MaterialTable& material
       }
       switch (pair.conduction) {
         case ConductionLaw::force: {
-          const double simulated = effective_modulus_Pa(ma, ma.youngs_modulus_Pa(), mb, mb.youngs_modulus_Pa());
-          const double real = effective_modulus_Pa(ma, ma.real_youngs_modulus_Pa(), mb, mb.real_youngs_modulus_Pa());
-          p.radius_factor = 2.0 * time_scale_factor * std::cbrt(simulated / real);
+          p.radius_factor = 2.0 * time_scale_factor *
+                            std::cbrt(effective_youngs_modulus_Pa(ma, mb) / effective_real_youngs_modulus_Pa(ma, mb));
           break;
         }
         case ConductionLaw::radius: p.radius_factor = 2.0 * time_scale_factor; break;

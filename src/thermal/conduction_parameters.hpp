@@ -30,12 +30,6 @@ struct ConductionPairParameters {
   }
 };
 
-/// The force law's contact radius from the elastic normal force (paper Eq. 1).
-inline double force_law_contact_radius_m(double elastic_normal_force_N, double effective_radius_m,
-                                         double effective_real_youngs_Pa) {
-  return std::cbrt(3.0 * elastic_normal_force_N * effective_radius_m / (4.0 * effective_real_youngs_Pa));
-}
-
 /// Conductance of one contact (W/K); a from the Hertz overlap.
 [[gnu::always_inline]] inline double contact_conductance_W_per_K(const ConductionPairParameters& p,
                                                                  double conductivity_W_per_mK,

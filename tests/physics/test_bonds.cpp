@@ -27,13 +27,6 @@ BondParameters test_bond() {
   return p;
 }
 
-std::size_t index_of(const Simulation& sim, ParticleId id) {
-  for (std::size_t i = 0; i < sim.particles.size(); ++i)
-    if (sim.particles.id[i] == id) return i;
-  ADD_FAILURE() << "no particle " << id;
-  return 0;
-}
-
 /// Holds a particle's motion: it moves at its current velocity and spin whatever acts.
 void drive(Simulation& sim, ParticleId id, const Vec3& velocity, const Vec3& spin) {
   const std::size_t i = index_of(sim, id);

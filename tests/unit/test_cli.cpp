@@ -596,7 +596,10 @@ TEST_F(CliTest, PaperDrillingChainRunsEndToEnd) {
     EXPECT_EQ(split_csv_line(chip[1]).at(5), "0") << model;
     const nlohmann::json& chip_final = summary["measurements"]["regions"]["chip_zone"]["final"];
     EXPECT_GT(chip_final["count"].get<int>(), 0) << model;
-    EXPECT_GT(chip_final["temperature_mean_K"].get<double>(), cold_K + 1.0) << model;
+    // Warmed at all (round-off is 1e-12 K): at the real moduli the drill's contacts conduct
+    // ~40x less than the files once made them, and the tiny drill warms its cuttings by
+    // tenths of a kelvin in its few milliseconds.
+    EXPECT_GT(chip_final["temperature_mean_K"].get<double>(), cold_K + 0.01) << model;
     EXPECT_LE(chip_final["temperature_max_K"].get<double>(), drill_K + 1e-9) << model;
   }
 }

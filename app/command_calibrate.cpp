@@ -86,16 +86,31 @@ Prior prior_state(const fs::path& directory, const PlannedRun& run) {
   } catch (const ordered_json::exception&) {
     return {false, "its summary.json cannot be read"};
   }
-  const std::string outcome = summary.value("outcome", "");
-  if (outcome != "completed") return {false, fmt::format("it ended '{}' before", outcome)};
-  const std::string hash = scenario_content_hash(read_text(run.scenario), run.set);
-  if (!summary.contains("scenario") || summary["scenario"].value("hash", "") != hash)
-    return {false, "its inputs changed (the scenario file or the --set values)"};
+  // A summary of another shape (edited, or not a run's) is run again, saying why.
+  const auto text_at = [&](const std::string& key) {
+    const ordered_json& value = json_at_path(summary, key);
+    if (!value.is_string()) throw InputError(fmt::format("'{}' is {}, not a text", key, value.dump()));
+    return value.get<std::string>();
+  };
+  try {
+    const std::string outcome = text_at("outcome");
+    if (outcome != "completed") return {false, fmt::format("it ended '{}' before", outcome)};
+    const std::string hash = scenario_content_hash(read_text(run.scenario), run.set);
+    if (text_at("scenario.hash") != hash) return {false, "its inputs changed (the scenario file or the --set values)"};
+  } catch (const InputError& problem) {
+    return {false, fmt::format("{}: not a run's summary: {}", summary_path.string(), problem.what())};
+  }
   return {true, ""};
 }
 
+/// A finished run's summary; one that is not JSON is named.
 ordered_json read_summary(const fs::path& directory) {
-  return ordered_json::parse(read_text(directory / "summary.json"));
+  const fs::path file = directory / "summary.json";
+  try {
+    return ordered_json::parse(read_text(file));
+  } catch (const ordered_json::exception& error) {
+    throw InputError(fmt::format("{}: cannot be read as JSON: {}", file.string(), error.what()));
+  }
 }
 
 /// The failed run's own message (summary.json), else the end of its log.

@@ -31,6 +31,8 @@
 #include "scenario/scenario_builder.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "signal_handling.hpp"
+#include "sim/measurement_runner.hpp"
+#include "sim/run_checkpoint.hpp"
 #include "sim/simulation.hpp"
 #include "sim/snapshot_capture.hpp"
 #include "sim/stage_plan.hpp"
@@ -77,6 +79,36 @@ std::vector<std::string> generated_mesh_files(const ScenarioSpec& spec) {
   for (const WallSpec& wall : spec.walls)
     if (wall.auger && wall.mesh) names.push_back(wall.name + ".stl");
   return names;
+}
+
+/// Every file and folder the run writes in its output directory.
+std::vector<std::string> run_output_names(const ScenarioSpec& spec) {
+  std::vector<std::string> outputs{time_series_file,
+                                   summary_file,
+                                   scenario_copy_file,
+                                   overrides_file,
+                                   SnapshotSeries::particles_collection,
+                                   SnapshotSeries::walls_collection,
+                                   SnapshotSeries::data_folder,
+                                   bond_breaks_file,
+                                   regions_folder,
+                                   profiles_folder,
+                                   CheckpointKeeper::folder};
+  for (const std::string& mesh_file : generated_mesh_files(spec)) outputs.push_back(mesh_file);
+  return outputs;
+}
+
+/// Every file the run reads: the scenario, its meshes and particle files, and the
+/// checkpoints it starts from (a run's directory: its checkpoints folder).
+std::vector<fs::path> run_input_paths(const ScenarioSpec& spec, const std::string& scenario_path) {
+  std::vector<fs::path> inputs{scenario_path};
+  for (const WallSpec& wall : spec.walls)
+    if (!wall.mesh_file.empty()) inputs.emplace_back(wall.mesh_file);
+  for (const InsertionSpec& insertion : spec.insertions)
+    if (!insertion.from_file.empty()) inputs.emplace_back(insertion.from_file);
+  if (const fs::path initial(spec.initial_state_checkpoint); !initial.empty())
+    inputs.push_back(fs::is_directory(initial) ? initial / CheckpointKeeper::folder : initial);
+  return inputs;
 }
 
 void write_generated_meshes(const fs::path& directory, const ScenarioSpec& spec) {
@@ -201,6 +233,22 @@ std::string final_line(const Ending& ending, const RunRecorder& recorder, const 
                      format_wall_duration(outcome.wall_s), where);
 }
 
+/// Restores the checkpoint once before any output is touched, so that one whose
+/// contents do not fit (another list of particle fields, other walls) is refused with
+/// the run directory as it was. The run restores it again where it goes on.
+void check_resumable(PreparedRun& prepared, const Checkpoint& checkpoint, const fs::path& directory) {
+  try {
+    StagePlan& plan = prepared.plan();
+    Rng rng(plan.seed);
+    SnapshotClock snapshots(plan.snapshots);
+    MeasurementRunner measurements(plan.measurements);
+    restore_run_state(checkpoint, plan, rng, snapshots, measurements);
+    prepared.simulation().restore_state(checkpoint);
+  } catch (const CheckpointError& error) {
+    throw InputError(fmt::format("{} (nothing in '{}' was changed)", error.what(), directory.string()));
+  }
+}
+
 /// `regodem run`, or with `resume` the continuation of a run from its checkpoint.
 int execute(const RunOptions& options, const ResumePoint* resume) {
   const auto started_at = std::chrono::system_clock::now();
@@ -227,21 +275,14 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
       // Refuse a used directory before building, which may take a while, but clear it
       // only after, so that a scenario that cannot run leaves a previous run's outputs.
       check_output_directory(directory, options.overwrite);
+      check_inputs_outside_outputs(directory, run_output_names(*spec),
+                                   run_input_paths(*spec, options.scenario_path));
     }
     prepared.emplace(PreparedRun::build(*spec, threads));
-    std::vector<std::string> outputs{time_series_file,
-                                     summary_file,
-                                     scenario_copy_file,
-                                     overrides_file,
-                                     SnapshotSeries::particles_collection,
-                                     SnapshotSeries::walls_collection,
-                                     SnapshotSeries::data_folder,
-                                     bond_breaks_file,
-                                     regions_folder,
-                                     profiles_folder};
-    outputs.push_back(CheckpointKeeper::folder);
-    for (const std::string& mesh_file : generated_mesh_files(*spec)) outputs.push_back(mesh_file);
-    if (!resume) prepare_output_directory(directory, options.overwrite, outputs);
+    if (resume)
+      check_resumable(*prepared, resume->checkpoint, directory);
+    else
+      prepare_output_directory(directory, options.overwrite, run_output_names(*spec));
   } catch (const InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;

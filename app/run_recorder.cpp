@@ -104,42 +104,53 @@ void RunRecorder::checkpoint(const RunState& state) {
 }
 
 void RunRecorder::resume_outputs(const Checkpoint& checkpoint) {
+  // Everything is read first: a section that does not read leaves the files as they are.
   ByteReader r = checkpoint.reader(kOutputs);
   const auto series_bytes = r.get<std::uint64_t>();
   const auto series_rows = r.get<std::uint64_t>();
-  if (series_bytes > 0) continue_time_series_ = std::make_pair(std::uintmax_t{series_bytes}, std::size_t{series_rows});
   const auto breaks_bytes = r.get<std::uint64_t>();
   const auto breaks_rows = r.get<std::uint64_t>();
-  if (!bond_breaks_path_.empty()) {
-    if (breaks_bytes > 0)
-      bond_breaks_ = std::make_unique<CsvTimeSeriesWriter>(bond_breaks_path_, 9, breaks_bytes, breaks_rows);
-    else
-      std::filesystem::remove(bond_breaks_path_);  // breaks after the checkpoint: they happen again
-  }
   const auto snapshot_count = r.get<std::uint64_t>();
   std::vector<PvdCollection::Entry> particles = read_entries(r), walls = read_entries(r);
-  if (snapshots_ != nullptr) snapshots_->series().restore(snapshot_count, std::move(particles), std::move(walls));
-  stages_.resize(r.get<std::uint64_t>());
-  for (std::size_t k = 0; k < stages_.size(); ++k) {
-    StageSummary& s = stages_[k];
+  std::vector<StageSummary> stages(r.get<std::uint64_t>());
+  std::optional<std::size_t> last_started;
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    StageSummary& s = stages[k];
     s.name = r.get_string();
     s.result = read_optional<StageResult>(r);
     s.start_time_s = read_optional<double>(r);
     s.end_time_s = read_optional<double>(r);
     s.wall_time_s = read_optional<double>(r);
     s.message = r.get_string();
-    if (s.start_time_s) last_started_index_ = k;
+    if (s.start_time_s) last_started = k;
   }
-  notices_.resize(r.get<std::uint64_t>());
-  for (std::string& n : notices_) n = r.get_string();
-  continue_measurements_.resize(r.get<std::uint64_t>());
-  for (MeasurementContinuation& m : continue_measurements_) {
+  std::vector<std::string> notices(r.get<std::uint64_t>());
+  for (std::string& n : notices) n = r.get_string();
+  std::vector<MeasurementContinuation> measurements(r.get<std::uint64_t>());
+  for (MeasurementContinuation& m : measurements) {
     m.bytes = r.get<std::uint64_t>();
     m.rows = r.get<std::uint64_t>();
     m.samples = r.get<std::uint64_t>();
     m.last_rows.resize(r.get<std::uint64_t>());
     for (std::vector<double>& row : m.last_rows) r.get_vector(row);
   }
+
+  std::error_code error;
+  if (series_bytes > 0 && (std::filesystem::file_size(time_series_path_, error) < series_bytes || error))
+    throw CheckpointError(fmt::format("'{}' is shorter than the {} bytes checkpoint '{}' knew: it cannot be continued",
+                                      time_series_path_.string(), series_bytes, checkpoint.source));
+  if (series_bytes > 0) continue_time_series_ = std::make_pair(std::uintmax_t{series_bytes}, std::size_t{series_rows});
+  if (!bond_breaks_path_.empty()) {
+    if (breaks_bytes > 0)
+      bond_breaks_ = std::make_unique<CsvTimeSeriesWriter>(bond_breaks_path_, 9, breaks_bytes, breaks_rows);
+    else
+      std::filesystem::remove(bond_breaks_path_);  // breaks after the checkpoint: they happen again
+  }
+  if (snapshots_ != nullptr) snapshots_->series().restore(snapshot_count, std::move(particles), std::move(walls));
+  stages_ = std::move(stages);
+  last_started_index_ = last_started;
+  notices_ = std::move(notices);
+  continue_measurements_ = std::move(measurements);
 }
 
 void RunRecorder::stage_started(const StageInfo& stage) {

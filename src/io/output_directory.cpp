@@ -1,5 +1,6 @@
 #include "io/output_directory.hpp"
 
+#include <algorithm>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -38,6 +39,19 @@ bool exists_and_is_usable(const fs::path& directory, bool overwrite) {
   return true;
 }
 
+/// Whether `path` is `container` or lies inside it (both canonical).
+bool is_within(const fs::path& path, const fs::path& container) {
+  const auto [mismatch, unused] = std::mismatch(container.begin(), container.end(), path.begin(), path.end());
+  return mismatch == container.end();
+}
+
+/// The path with symbolic links and ".." resolved, for as much of it as exists.
+fs::path resolved(const fs::path& path) {
+  std::error_code error;
+  const fs::path canonical = fs::weakly_canonical(path, error);
+  return error ? fs::absolute(path).lexically_normal() : canonical;
+}
+
 }  // namespace
 
 std::filesystem::path default_output_directory(std::string_view scenario_name) {
@@ -68,6 +82,28 @@ void prepare_output_directory(const std::filesystem::path& directory, bool overw
     if (error) {
       throw InputError(fmt::format("cannot remove '{}' to overwrite it: {}",
                                    (directory / name).string(), error.message()));
+    }
+  }
+}
+
+void check_inputs_outside_outputs(const std::filesystem::path& directory,
+                                  const std::vector<std::string>& run_output_names,
+                                  const std::vector<std::filesystem::path>& inputs) {
+  const fs::path output_root = resolved(directory);
+  for (const fs::path& input : inputs) {
+    // The file itself, and (for a link among the outputs, which --overwrite removes) the
+    // link.
+    const fs::path absolute_input = fs::absolute(input).lexically_normal();
+    const fs::path spellings[] = {resolved(input),
+                                  resolved(absolute_input.parent_path()) / absolute_input.filename()};
+    for (const std::string& name : run_output_names) {
+      const fs::path output = output_root / name;
+      if (!is_within(spellings[0], output) && !is_within(spellings[1], output)) continue;
+      throw InputError(fmt::format(
+          "{}: this run reads it, and it is among the outputs the run writes in '{}' ('{}'), which the run would "
+          "delete or overwrite: choose another output directory with -o OUTDIR, or copy the input out of '{}' "
+          "and run from the copy",
+          input.string(), directory.string(), name, directory.string()));
     }
   }
 }

@@ -27,4 +27,13 @@ void check_output_directory(const std::filesystem::path& directory, bool overwri
 void prepare_output_directory(const std::filesystem::path& directory, bool overwrite,
                               const std::vector<std::string>& run_output_names);
 
+/// Throws InputError, naming the input, when one of `inputs` (the files and folders a
+/// run reads: its scenario, meshes, particle files, the checkpoints it starts from) is
+/// one of the entries `run_output_names` of `directory` or lies inside one: the run
+/// would delete it (--overwrite) or write over it. Paths are compared after resolving
+/// symbolic links and "..", so another spelling of the same file is found too.
+void check_inputs_outside_outputs(const std::filesystem::path& directory,
+                                  const std::vector<std::string>& run_output_names,
+                                  const std::vector<std::filesystem::path>& inputs);
+
 }  // namespace regodem

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <limits>
+#include <utility>
 
 #include "io/checkpoint_file.hpp"
 #include "sim/simulation.hpp"
@@ -46,8 +47,11 @@ void save_particles(ByteWriter& w, ParticleStore& particles) {
 }
 
 /// Every field of for_each_field, so a field added there is saved and restored too; a
-/// checkpoint with another list of fields is refused.
-void load_particles(ByteReader& r, ParticleStore& particles) {
+/// checkpoint with another list of fields is refused. Read into a store of its own and
+/// moved in whole: a refused one leaves `particles_out` as it was, not with fields of
+/// different lengths that any later pass would read out of bounds.
+void load_particles(ByteReader& r, ParticleStore& particles_out) {
+  ParticleStore particles;
   std::uint32_t fields = 0;
   particles.for_each_field([&](auto&) { ++fields; });
   const auto saved_fields = r.get<std::uint32_t>();
@@ -66,6 +70,7 @@ void load_particles(ByteReader& r, ParticleStore& particles) {
     ++index;
   });
   particles.set_next_id(r.get<ParticleId>());
+  particles_out = std::move(particles);
 }
 
 void save_bonds(ByteWriter& w, const BondStore& b, const BondCounts& counts, const std::vector<BondBreakEvent>& pending) {

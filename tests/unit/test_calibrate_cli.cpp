@@ -211,5 +211,34 @@ TEST_F(CalibrateCli, FailedRunAndBadInputAreReported) {
   EXPECT_TRUE(contains(failed.output, "run 'reference' failed (exit status 1): ")) << failed.output;
 }
 
+// An earlier run's summary.json that is JSON but not a run's summary (edited, or from
+// something else): the run is run again, with the file and the key named, and the
+// calibration goes on (here to the bad response key, found in the new summary: exit 2).
+TEST_F(CalibrateCli, SummaryOfTheWrongShapeIsNamedAndTheRunRunsAgain) {
+  std::string text = read_file(dir_ / "plate_calibration.yaml");
+  text.replace(text.find("late.final.temperature_mean_K"), 29, "late.final.temperature_mean");
+  std::ofstream(dir_ / "bad_key.yaml") << text;
+  const struct {
+    const char* summary;
+    const char* key;
+  } shapes[] = {{"[1, 2]", "'outcome'"},
+                {"{\"outcome\": 1}", "'outcome' is 1"},
+                {"{\"outcome\": \"completed\", \"scenario\": \"plate\"}", "'scenario.hash'"},
+                {"{\"outcome\": \"completed\", \"scenario\": {\"hash\": 7}}", "'scenario.hash' is 7"}};
+  int k = 0;
+  for (const auto& shape : shapes) {
+    SCOPED_TRACE(shape.summary);
+    const std::string out = "out" + std::to_string(k++);
+    fs::create_directories(dir_ / out / "runs/reference");
+    std::ofstream(dir_ / out / "runs/reference/summary.json") << shape.summary;
+    const Finished f = run_regodem({"calibrate", "bad_key.yaml", "-o", out}, dir_);
+    EXPECT_EQ(f.exit_code, 2) << f.output;
+    EXPECT_FALSE(contains(f.output, "internal error")) << f.output;
+    EXPECT_TRUE(contains(f.output, "reference: runs again: " + (dir_ / out / "runs/reference/summary.json").string() + ": ")) << f.output;
+    EXPECT_TRUE(contains(f.output, shape.key)) << f.output;
+    EXPECT_TRUE(contains(f.output, "in runs/reference/summary.json: 'measurements.regions.late.final")) << f.output;
+  }
+}
+
 }  // namespace
 }  // namespace regodem

@@ -334,6 +334,46 @@ TEST_F(CliTest, NonEmptyOutputDirectoryIsRefusedUnlessOverwrite) {
   EXPECT_EQ(read_file(output / "notes.txt"), "mine\n");  // not a run's file: left alone
 }
 
+// A run never deletes or overwrites what it reads: here the scenario copy of an earlier
+// run, then that run's checkpoints as its initial_state, each in the output directory.
+TEST_F(CliTest, OverwriteRefusesARunWhoseInputsAreAmongItsOutputs) {
+  const fs::path output = directory_ / "result";
+  ASSERT_EQ(run_regodem({"run", write_scenario("tiny.yaml", tiny_scenario()).string(), "-o", output.string()}).exit_code,
+            0);
+  const fs::path copy = output / "scenario.yaml";
+  const std::string copy_before = read_file(copy), summary_before = read_file(output / "summary.json");
+
+  const CommandResult from_copy = run_regodem({"run", copy.string(), "-o", output.string(), "--overwrite"});
+  EXPECT_EQ(from_copy.exit_code, 2) << from_copy.output;
+  EXPECT_TRUE(contains(from_copy.output, copy.string() + ": ")) << from_copy.output;
+  EXPECT_TRUE(contains(from_copy.output, "-o OUTDIR")) << from_copy.output;
+  EXPECT_EQ(read_file(copy), copy_before);
+  EXPECT_EQ(read_file(output / "summary.json"), summary_before);
+
+  const fs::path previous = directory_ / "previous";
+  ASSERT_EQ(run_regodem({"run", (directory_ / "tiny.yaml").string(), "-o", previous.string()}).exit_code, 0);
+  std::string next = tiny_scenario();
+  next.replace(next.find("insertions:"), next.find("stages:") - next.find("insertions:"),
+               "initial_state: {checkpoint: previous}\n");
+  const fs::path next_file = write_scenario("next.yaml", next);
+  const auto checkpoints_of = [](const fs::path& run) {
+    std::map<std::string, std::string> files;
+    std::error_code none;
+    for (const auto& e : fs::directory_iterator(run / "checkpoints", none)) files[e.path().string()] = read_file(e.path());
+    return files;
+  };
+  const std::map<std::string, std::string> checkpoints_before = checkpoints_of(previous);
+  ASSERT_FALSE(checkpoints_before.empty());
+  const CommandResult from_checkpoint = run_regodem({"run", next_file.string(), "-o", previous.string(), "--overwrite"});
+  EXPECT_EQ(from_checkpoint.exit_code, 2) << from_checkpoint.output;
+  EXPECT_TRUE(contains(from_checkpoint.output, (previous / "checkpoints").string() + ": ")) << from_checkpoint.output;
+  EXPECT_EQ(checkpoints_of(previous), checkpoints_before);
+
+  // Into another directory, the same scenario runs.
+  const CommandResult elsewhere = run_regodem({"run", next_file.string(), "-o", (directory_ / "next").string()});
+  EXPECT_EQ(elsewhere.exit_code, 0) << elsewhere.output;
+}
+
 TEST_F(CliTest, SetOverridesAreAppliedAndRecorded) {
   const fs::path scenario = write_scenario("tiny.yaml", tiny_scenario());
   const CommandResult plain = run_regodem({"run", scenario.string(), "-o", (directory_ / "plain").string()});

@@ -3,16 +3,19 @@
 // `regodem resume` ends in the very state of a run that was never stopped (time
 // series, snapshots and the final checkpoint's state sections, byte for byte). A
 // corrupt newest checkpoint is reported and the previous one used; a changed scenario
-// is refused; a new scenario starts from another run's checkpoint.
+// is refused; a checkpoint whose contents do not fit is refused with nothing changed;
+// a new scenario starts from another run's checkpoint.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -158,6 +161,79 @@ TEST_F(CliResume, ChangedScenarioIsRefused) {
   std::ofstream(scenario, std::ios::binary | std::ios::trunc) << original;
   EXPECT_EQ(resumed.exit_code, 2) << resumed.output;
   EXPECT_TRUE(contains(resumed.output, "has changed")) << resumed.output;
+}
+
+/// Every file under `root`, by its path there, with its bytes.
+std::map<std::string, std::string> files_under(const fs::path& root) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = read_file(e.path());
+  return files;
+}
+
+/// The body of section `tag`.
+std::string& section_body(Checkpoint& checkpoint, const std::string& tag) {
+  for (CheckpointSection& s : checkpoint.sections())
+    if (s.tag == tag) return s.body;
+  ADD_FAILURE() << "no section " << tag;
+  static std::string none;
+  return none;
+}
+
+void add_to_u32(std::string& bytes, std::size_t at, std::uint32_t amount) {
+  std::uint32_t value;
+  std::memcpy(&value, bytes.data() + at, sizeof value);
+  value += amount;
+  std::memcpy(bytes.data() + at, &value, sizeof value);
+}
+
+// Checkpoints whose checksum is right but whose contents do not fit (written by another
+// version, or damaged before the checksum was taken): resume refuses with the reason and
+// leaves every file of the run directory as it was, summary.json included.
+TEST_F(CliResume, CheckpointWhoseContentsDoNotFitIsRefusedAndChangesNothing) {
+  struct Damage {
+    const char* what;
+    void (*apply)(Checkpoint&);
+    const char* reason;
+  };
+  const Damage damages[] = {
+      {"another particle field count", [](Checkpoint& c) { add_to_u32(section_body(c, "PART"), 0, 1); },
+       "particle fields"},
+      {"another element size of the second particle field",
+       [](Checkpoint& c) {
+         // PART: u32 field count; per field a u32 element size, a u64 count, the elements.
+         std::string& body = section_body(c, "PART");
+         std::uint32_t element_bytes;
+         std::uint64_t count;
+         std::memcpy(&element_bytes, body.data() + 4, sizeof element_bytes);
+         std::memcpy(&count, body.data() + 8, sizeof count);
+         add_to_u32(body, 4 + 4 + 8 + element_bytes * count, 1);
+       },
+       "particle field 1 has"},
+      {"another number of walls", [](Checkpoint& c) { add_to_u32(section_body(c, "WALL"), 0, 1); }, "wall bodies"},
+  };
+  for (const Damage& damage : damages) {
+    SCOPED_TRACE(damage.what);
+    fs::remove_all(dir_ / "out");
+    fs::copy(full_run() / "out", dir_ / "out", fs::copy_options::recursive);
+    fs::remove(newest_checkpoint(dir_ / "out"));  // resume from the end of the first stage
+    const fs::path file = newest_checkpoint(dir_ / "out");
+    Checkpoint checkpoint = read_checkpoint_file(file);
+    damage.apply(checkpoint);
+    write_checkpoint_file(file, checkpoint);
+    const std::map<std::string, std::string> before = files_under(dir_ / "out");
+
+    const Finished resumed = run_regodem({"resume", "out"}, dir_);
+    EXPECT_EQ(resumed.exit_code, 2) << resumed.output;
+    EXPECT_TRUE(contains(resumed.output, file.filename().string())) << resumed.output;
+    EXPECT_TRUE(contains(resumed.output, damage.reason)) << resumed.output;
+    const std::map<std::string, std::string> after = files_under(dir_ / "out");
+    EXPECT_EQ(after.size(), before.size());
+    for (const auto& [name, bytes] : before) {
+      const auto found = after.find(name);
+      EXPECT_TRUE(found != after.end() && found->second == bytes) << name << " changed";
+    }
+  }
 }
 
 /// Field `column` of a CSV line (no quoting in these files).

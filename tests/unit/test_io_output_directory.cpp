@@ -1,5 +1,6 @@
 // The output directory rule: new or empty directories are used, a non-empty one is
-// refused unless --overwrite, and --overwrite removes only what a run writes.
+// refused unless --overwrite, --overwrite removes only what a run writes, and a run
+// whose inputs are among its outputs is refused.
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -83,6 +84,36 @@ TEST_F(OutputDirectoryTest, FileInTheWayIsRefused) {
   touch(root_ / "a_file");
   EXPECT_THROW(prepare_output_directory(root_ / "a_file", true, run_outputs_), InputError);
   EXPECT_THROW(prepare_output_directory(root_ / "a_file" / "below", false, run_outputs_), InputError);
+}
+
+// An input among a run's outputs is found however it is spelt: through "..", through a
+// link to the output directory, or as a link that --overwrite would remove.
+TEST_F(OutputDirectoryTest, InputsAmongTheOutputsAreRefusedByName) {
+  const fs::path directory = root_ / "out";
+  fs::create_directories(directory / "frames");
+  touch(directory / "summary.json");
+  touch(directory / "frames" / "bed.csv");
+  touch(root_ / "scenario.yaml");
+  touch(directory / "notes.csv");  // not a run's output: may be read
+  fs::create_directory_symlink(directory, root_ / "link_to_out");
+  fs::create_symlink(root_ / "scenario.yaml", directory / "time_series.csv");
+  const auto refusal = [&](const fs::path& input) -> std::string {
+    try {
+      check_inputs_outside_outputs(directory, run_outputs_, {root_ / "scenario.yaml", input});
+    } catch (const InputError& error) {
+      return error.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(refusal(directory / "notes.csv"), "");
+  EXPECT_EQ(refusal(root_ / "scenario.yaml"), "");
+  for (const fs::path& input : {directory / "summary.json", root_ / "out/../out/frames/bed.csv",
+                                root_ / "link_to_out/summary.json", directory / "time_series.csv"}) {
+    const std::string message = refusal(input);
+    EXPECT_EQ(message.rfind(input.string() + ": ", 0), 0u) << input << ": " << message;
+    EXPECT_NE(message.find("-o OUTDIR"), std::string::npos) << message;
+  }
+  EXPECT_TRUE(fs::exists(directory / "summary.json"));  // checking changes nothing
 }
 
 TEST_F(OutputDirectoryTest, DefaultDirectoryIsOutSlashAPathSafeScenarioName) {

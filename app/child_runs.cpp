@@ -71,11 +71,15 @@ std::vector<std::optional<ChildResult>> run_children(const std::string& program,
   while (true) {
     while (signals.load() > signals_passed_on) {
       ++signals_passed_on;
-      if (!running.empty())
-        fmt::print(stderr, "regodem: {} the {} running run{}{}\n", signals_passed_on == 1 ? "stopping" : "ending",
-                   running.size(), running.size() == 1 ? "" : "s",
-                   signals_passed_on == 1 ? " cleanly (Ctrl-C again ends them at once)" : " at once");
-      for (const Running& r : running) ::kill(r.pid, SIGINT);
+      if (running.empty()) continue;
+      if (signals_passed_on == 1) {
+        fmt::print(stderr, "regodem: stopping the {} running run{} cleanly (each writes its summary and a checkpoint)\n",
+                   running.size(), running.size() == 1 ? "" : "s");
+        for (const Running& r : running) ::kill(r.pid, SIGINT);
+      } else {
+        fmt::print(stderr, "regodem: already stopping the {} running run{}\n", running.size(),
+                   running.size() == 1 ? "" : "s");
+      }
     }
     const bool may_start = signals_passed_on == 0 && !failed;
     while (may_start && next < jobs.size() && static_cast<int>(running.size()) < processes) {

@@ -30,8 +30,9 @@ struct ChildEvents {
 
 /// Runs `jobs` with `program`, at most `processes` at once, in order. Each child gets
 /// its own process group, so a Ctrl-C at the terminal reaches this process only and is
-/// passed on exactly once: every increase of `signals` (install_signal_counter) sends
-/// SIGINT to the running children (their first stops them cleanly, a second ends them).
+/// passed on exactly once: the first increase of `signals` (install_signal_counter)
+/// sends SIGINT to the running children, which stop cleanly and write their summaries
+/// and checkpoints; later signals are only reported (a child never dies of a signal).
 /// After a signal, or once a job has failed (exit status not 0), no new job starts; the
 /// running ones are waited for. Returns a result per job; none for a job not started.
 std::vector<std::optional<ChildResult>> run_children(const std::string& program, const std::vector<ChildJob>& jobs,

@@ -32,6 +32,7 @@
 #include "human_format.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json_path.hpp"
+#include "io/run_directory_lock.hpp"
 #include "scenario/calibration_reader.hpp"
 #include "scenario/content_hash.hpp"
 #include "scenario/scenario_builder.hpp"
@@ -449,6 +450,8 @@ int calibrate(const CalibrateOptions& options) {
   const doe::CentralCompositeDesign design = doe::make_central_composite_design(design_factors, spec.design);
   check_scenarios(spec, design);
 
+  // One calibration per directory; each of its runs also locks its own.
+  const RunDirectoryLock lock(output, fmt::format("regodem calibrate {}", options.calibration_path));
   std::error_code error;
   fs::create_directories(output / "runs", error);
   if (error)

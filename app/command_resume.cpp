@@ -1,6 +1,7 @@
 // `regodem resume OUTDIR`: finds the run's newest checkpoint that reads (a corrupt or
 // truncated one is reported and the one before it used), checks that the scenario is
-// the one the run was started with, and runs on from there into the same OUTDIR.
+// the one the run was started with, and runs on from there into the same OUTDIR (none
+// while another process holds the directory).
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -8,6 +9,7 @@
 #include "checkpoint_keeper.hpp"
 #include "commands.hpp"
 #include "core/error.hpp"
+#include "io/run_directory_lock.hpp"
 #include "sim/run_checkpoint.hpp"
 
 namespace regodem::app {
@@ -17,6 +19,14 @@ int resume_run(const ResumeOptions& options) {
   const fs::path directory(options.run_directory);
   if (!fs::is_directory(directory)) {
     fmt::print(stderr, "regodem: error: '{}' is not a run's output directory\n", options.run_directory);
+    return exit_status::bad_input;
+  }
+  try {
+    // A live run there comes first: its checkpoints are still being written. The
+    // continued run takes the lock for good once it has read the checkpoint.
+    const RunDirectoryLock probe(directory, fmt::format("regodem resume {}", options.run_directory));
+  } catch (const InputError& error) {
+    fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
   }
   const std::vector<fs::path> files = checkpoint_files_newest_first(directory);

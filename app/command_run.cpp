@@ -22,6 +22,7 @@
 #include "human_format.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_directory.hpp"
+#include "io/run_directory_lock.hpp"
 #include "io/stl_writer.hpp"
 #include "io/summary_json_writer.hpp"
 #include "measure/thermal_history.hpp"
@@ -252,17 +253,24 @@ void check_resumable(PreparedRun& prepared, const Checkpoint& checkpoint, const 
 /// `regodem run`, or with `resume` the continuation of a run from its checkpoint.
 int execute(const RunOptions& options, const ResumePoint* resume) {
   const auto started_at = std::chrono::system_clock::now();
+  // First of all, so that a signal while the scenario is read or built still ends in a
+  // summary and a checkpoint (at the run's first step boundary).
+  const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   omp_set_num_threads(threads);
 
   std::optional<ScenarioSpec> spec;
   std::optional<PreparedRun> prepared;
+  std::optional<RunDirectoryLock> lock;  // held to the end of the run: one writer per directory
   fs::path directory;
   try {
     spec = read_scenario_file(options.scenario_path, options.overrides);
     directory = options.output_directory.empty()
                     ? default_output_directory(scenario_name_of(*spec, options.scenario_path))
                     : fs::path(options.output_directory);
+    if (!resume) check_output_directory(directory, options.overwrite);  // before the lock creates it
+    lock.emplace(directory, resume ? fmt::format("regodem resume {}", directory.string())
+                                   : fmt::format("regodem run {}", options.scenario_path));
     if (resume) {
       const RunIdentity identity = read_identity(resume->checkpoint);
       if (identity.content_hash != spec->content_hash)
@@ -279,11 +287,14 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
                                    run_input_paths(*spec, options.scenario_path));
     }
     prepared.emplace(PreparedRun::build(*spec, threads));
-    if (resume)
+    if (resume) {
       check_resumable(*prepared, resume->checkpoint, directory);
-    else
-      prepare_output_directory(directory, options.overwrite, run_output_names(*spec));
+    } else {
+      for (const fs::path& kept : prepare_output_directory(directory, options.overwrite, run_output_names(*spec)))
+        fmt::print(stderr, "regodem: note: --overwrite kept '{}' (not a file a run writes)\n", kept.string());
+    }
   } catch (const InputError& error) {
+    if (lock) lock->release_and_remove_created_directory();  // a refused run leaves no empty folder behind
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
   }
@@ -318,7 +329,6 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
     display.notice(fmt::format("resuming from {}", resume->file));
   }
 
-  const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   const auto wall_start = std::chrono::steady_clock::now();
   const auto wall_s = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

@@ -40,14 +40,14 @@ void install(int signal_number, void (*handler)(int), int flags) {
 }  // namespace
 
 const std::atomic<bool>& install_stop_request_handlers() {
-  install(SIGINT, request_stop, SA_RESETHAND);  // the second signal gets the default action
-  install(SIGTERM, request_stop, SA_RESETHAND);
+  install(SIGINT, request_stop, SA_RESTART);
+  install(SIGTERM, request_stop, SA_RESTART);
   return stop_requested;
 }
 
 const std::atomic<int>& install_signal_counter() {
-  install(SIGINT, count_signal, 0);
-  install(SIGTERM, count_signal, 0);
+  install(SIGINT, count_signal, SA_RESTART);
+  install(SIGTERM, count_signal, SA_RESTART);
   return signal_count;
 }
 

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "io/run_directory_lock.hpp"
 
 namespace regodem {
 namespace {
@@ -25,7 +26,10 @@ bool exists_and_is_usable(const fs::path& directory, bool overwrite) {
   if (!fs::is_directory(status)) {
     throw InputError(fmt::format("output path '{}' exists and is not a directory", directory.string()));
   }
-  const bool empty = fs::is_empty(directory, error);
+  // The lock of the process that is preparing this directory does not count.
+  bool empty = true;
+  for (fs::directory_iterator entry(directory, error), end; !error && entry != end; entry.increment(error))
+    if (entry->path().filename() != RunDirectoryLock::file_name) empty = false;
   if (error) {
     throw InputError(fmt::format("cannot read output directory '{}': {}", directory.string(),
                                  error.message()));
@@ -52,6 +56,16 @@ fs::path resolved(const fs::path& path) {
   return error ? fs::absolute(path).lexically_normal() : canonical;
 }
 
+/// Whether a file in an output folder has the form of one a run writes there: a
+/// snapshot (.vtp), a measurement (.csv), a checkpoint (.rgck), or the temporary file
+/// of an atomic write that a killed run left (".NAME.tmp-...").
+bool is_written_by_a_run(const fs::path& file) {
+  const std::string name = file.filename().string();
+  const std::string extension = file.extension().string();
+  return extension == ".vtp" || extension == ".csv" || extension == ".rgck" ||
+         (name.starts_with('.') && name.find(".tmp-") != std::string::npos);
+}
+
 }  // namespace
 
 std::filesystem::path default_output_directory(std::string_view scenario_name) {
@@ -66,8 +80,8 @@ void check_output_directory(const std::filesystem::path& directory, bool overwri
   exists_and_is_usable(directory, overwrite);
 }
 
-void prepare_output_directory(const std::filesystem::path& directory, bool overwrite,
-                              const std::vector<std::string>& run_output_names) {
+std::vector<std::filesystem::path> prepare_output_directory(const std::filesystem::path& directory, bool overwrite,
+                                                            const std::vector<std::string>& run_output_names) {
   std::error_code error;
   if (!exists_and_is_usable(directory, overwrite)) {
     fs::create_directories(directory, error);
@@ -75,15 +89,34 @@ void prepare_output_directory(const std::filesystem::path& directory, bool overw
       throw InputError(fmt::format("cannot create output directory '{}': {}", directory.string(),
                                    error.message()));
     }
-    return;
+    return {};
   }
+  std::vector<fs::path> kept;
+  const auto remove = [&](const fs::path& path) {
+    fs::remove(path, error);
+    if (error)
+      throw InputError(fmt::format("cannot remove '{}' to overwrite it: {}", path.string(), error.message()));
+  };
   for (const std::string& name : run_output_names) {
-    fs::remove_all(directory / name, error);
-    if (error) {
-      throw InputError(fmt::format("cannot remove '{}' to overwrite it: {}",
-                                   (directory / name).string(), error.message()));
+    const fs::path path = directory / name;
+    if (!fs::is_directory(fs::symlink_status(path, error))) {
+      remove(path);
+      continue;
     }
+    // An output folder (vtk/, checkpoints/...): only what a run writes there goes, so
+    // that a user's own file in it survives --overwrite.
+    std::vector<fs::path> entries;
+    for (fs::directory_iterator entry(path, error), end; !error && entry != end; entry.increment(error))
+      entries.push_back(entry->path());
+    for (const fs::path& entry : entries) {
+      if (is_written_by_a_run(entry) && !fs::is_directory(fs::symlink_status(entry, error)))
+        remove(entry);
+      else
+        kept.push_back(entry);
+    }
+    if (fs::is_empty(path, error)) remove(path);
   }
+  return kept;
 }
 
 void check_inputs_outside_outputs(const std::filesystem::path& directory,

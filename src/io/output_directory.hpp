@@ -21,11 +21,14 @@ void check_output_directory(const std::filesystem::path& directory, bool overwri
 /// Makes `directory` ready for a run. A missing directory is created (with its
 /// parents); an empty one is used as it is. A non-empty one is refused with an
 /// InputError unless `overwrite`; then only the entries named in `run_output_names`
-/// (the files and folders a run writes) are removed: --overwrite must never delete
-/// files a run did not write, as `-o .` would otherwise do. Throws InputError when
-/// the path is not a directory or cannot be created.
-void prepare_output_directory(const std::filesystem::path& directory, bool overwrite,
-                              const std::vector<std::string>& run_output_names);
+/// (the files and folders a run writes) are removed, and inside such a folder only
+/// the files of the forms a run writes there (.vtp, .csv, .rgck, leftover temporary
+/// files), the folder itself when that empties it: --overwrite must never delete
+/// files a run did not write, as `-o .` would otherwise do. Returns what it kept
+/// inside the output folders. Throws InputError when the path is not a directory or
+/// cannot be created.
+std::vector<std::filesystem::path> prepare_output_directory(const std::filesystem::path& directory, bool overwrite,
+                                                            const std::vector<std::string>& run_output_names);
 
 /// Throws InputError, naming the input, when one of `inputs` (the files and folders a
 /// run reads: its scenario, meshes, particle files, the checkpoints it starts from) is

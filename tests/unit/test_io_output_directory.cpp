@@ -1,15 +1,20 @@
 // The output directory rule: new or empty directories are used, a non-empty one is
-// refused unless --overwrite, --overwrite removes only what a run writes, and a run
-// whose inputs are among its outputs is refused.
+// refused unless --overwrite, --overwrite removes only what a run writes, a run
+// whose inputs are among its outputs is refused, and a directory another process holds
+// locked is refused.
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
 #include "io/output_directory.hpp"
+#include "io/run_directory_lock.hpp"
 
 namespace regodem {
 namespace {
@@ -78,6 +83,67 @@ TEST_F(OutputDirectoryTest, OverwriteRemovesOnlyWhatARunWrites) {
   EXPECT_FALSE(fs::exists(directory / "time_series.csv"));
   EXPECT_FALSE(fs::exists(directory / "frames"));
   EXPECT_TRUE(fs::exists(directory / "my_notes.txt"));
+}
+
+// A user's own file inside an output folder survives --overwrite (it used to be removed
+// with the folder); the folder stays, holding it.
+TEST_F(OutputDirectoryTest, OverwriteKeepsAUsersFileInsideAnOutputFolder) {
+  const fs::path directory = root_ / "used";
+  fs::create_directories(directory / "frames");
+  touch(directory / "frames" / "0001.vtp");
+  touch(directory / "frames" / ".0002.vtp.tmp-17-1");  // left by a killed run
+  touch(directory / "frames" / "view.pvsm");
+  touch(directory / "summary.json");
+  const std::vector<fs::path> kept = prepare_output_directory(directory, true, run_outputs_);
+  EXPECT_FALSE(fs::exists(directory / "frames" / "0001.vtp"));
+  EXPECT_FALSE(fs::exists(directory / "frames" / ".0002.vtp.tmp-17-1"));
+  EXPECT_TRUE(fs::exists(directory / "frames" / "view.pvsm"));
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0].filename(), "view.pvsm");
+}
+
+TEST_F(OutputDirectoryTest, TheLockFileAloneLeavesADirectoryEmpty) {
+  fs::create_directory(root_ / "locked");
+  touch(root_ / "locked" / RunDirectoryLock::file_name);
+  EXPECT_NO_THROW(check_output_directory(root_ / "locked", false));
+}
+
+TEST_F(OutputDirectoryTest, ALockedDirectoryIsRefusedNamingItsHolder) {
+  const fs::path directory = root_ / "out" / "run";
+  std::optional<RunDirectoryLock> first;
+  first.emplace(directory, "regodem run first.yaml");
+  EXPECT_TRUE(first->created_directory());
+  try {
+    RunDirectoryLock second(directory, "regodem run second.yaml");
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("in use by pid " + std::to_string(::getpid()) + " (regodem run first.yaml)"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find(directory.string()), std::string::npos) << message;
+  }
+  first.reset();  // released: the file goes, and the next process gets the lock
+  EXPECT_FALSE(fs::exists(directory / RunDirectoryLock::file_name));
+  EXPECT_NO_THROW(RunDirectoryLock(directory, "regodem run second.yaml"));
+}
+
+// A lock file left by a killed process (nobody holds its lock) does not block.
+TEST_F(OutputDirectoryTest, AStaleLockFileDoesNotBlock) {
+  fs::create_directory(root_ / "stale");
+  std::ofstream(root_ / "stale" / RunDirectoryLock::file_name) << "pid 999999 (regodem run old.yaml)\n";
+  EXPECT_NO_THROW(RunDirectoryLock(root_ / "stale", "regodem run new.yaml"));
+}
+
+TEST_F(OutputDirectoryTest, ARefusedRunRemovesTheDirectoryItsLockCreated) {
+  RunDirectoryLock created(root_ / "new", "regodem run x.yaml");
+  created.release_and_remove_created_directory();
+  EXPECT_FALSE(fs::exists(root_ / "new"));
+  fs::create_directory(root_ / "existing");
+  RunDirectoryLock existing(root_ / "existing", "regodem run x.yaml");
+  EXPECT_FALSE(existing.created_directory());
+  existing.release_and_remove_created_directory();
+  EXPECT_TRUE(fs::is_directory(root_ / "existing"));
 }
 
 TEST_F(OutputDirectoryTest, FileInTheWayIsRefused) {

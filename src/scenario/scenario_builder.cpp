@@ -17,6 +17,7 @@
 #include "sim/simulation.hpp"
 #include "sim/stage_plan.hpp"
 #include "sim/stage_runner.hpp"
+#include "scenario/plan_limits.hpp"
 #include "sim/time_step.hpp"
 #include "thermal/thermal_wall.hpp"
 #include "thermal/time_table.hpp"
@@ -425,15 +426,18 @@ Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, con
     c.number_fraction /= total;
     mean_volume += c.number_fraction * sphere_volume(c.radius_m);
   }
+  double count = 0.0;
   switch (in.amount_kind) {
-    case InsertAmount::count: ins.target_count = static_cast<std::size_t>(std::llround(in.amount)); break;
-    case InsertAmount::solid_fraction:
-      ins.target_count = static_cast<std::size_t>(std::llround(in.amount * ins.region.volume_m3() / mean_volume));
-      break;
-    case InsertAmount::mass:
-      ins.target_count = static_cast<std::size_t>(std::llround(in.amount / (ins.density_kg_per_m3 * mean_volume)));
-      break;
+    case InsertAmount::count: count = in.amount; break;
+    case InsertAmount::solid_fraction: count = in.amount * ins.region.volume_m3() / mean_volume; break;
+    case InsertAmount::mass: count = in.amount / (ins.density_kg_per_m3 * mean_volume); break;
   }
+  // Checked before the conversion, which would overflow; the memory check then says
+  // whether this machine can hold them.
+  if (!(std::round(count) <= max_particles_per_insertion))
+    fail(in.where, fmt::format("insertion '{}' asks for {:.4g} particles; at most {:.0e} can be inserted at once",
+                               in.name, count, max_particles_per_insertion));
+  ins.target_count = static_cast<std::size_t>(std::llround(count));
   ins.rate_per_s = in.rate_per_s;
   ins.interval_s = in.interval_s > 0.0 ? in.interval_s : 0.01;
   return ins;
@@ -516,6 +520,31 @@ BondFormation bond_formation(const ScenarioSpec& spec, const BondFormationSpec& 
   return out;
 }
 
+/// Each stage's span in simulated time and its step, where the plan fixes them (a
+/// static-bed stage's default step depends on the bed, and is not counted).
+std::vector<PlannedStage> planned_stages(const StagePlan& plan, const WallSet& walls, double dt) {
+  std::vector<PlannedStage> stages;
+  for (const Stage& stage : plan.stages) {
+    PlannedStage planned{stage.name, "its duration", stage.duration_s, dt};
+    if (stage.freezes_mechanics()) {
+      if (stage.thermal_time_step_s <= 0.0) continue;
+      planned.step_s = stage.thermal_time_step_s;
+      planned.span = "its duration in thermal steps";
+      if (stage.ends_on_measurement()) planned.simulated_s = stage.max_duration_s;
+    } else if (stage.until_settled || stage.ends_on_measurement()) {
+      planned.simulated_s = stage.max_duration_s;
+      planned.span = "its max_duration";
+    } else if (stage.ends_at_depth()) {
+      const WallBody& wall = walls.bodies[static_cast<std::size_t>(stage.depth_body)];
+      const double speed = norm(wall.motion.velocity_m_per_s);
+      planned.simulated_s = speed > 0.0 ? stage.depth_m / speed : 0.0;
+      planned.span = fmt::format("the time wall '{}' takes to feed {:.4g} m", wall.name, stage.depth_m);
+    }
+    stages.push_back(std::move(planned));
+  }
+  return stages;
+}
+
 }  // namespace
 
 PreparedRun::PreparedRun() : impl_(std::make_unique<Impl>()) {}
@@ -551,14 +580,23 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   std::vector<char> particle_material(materials.size(), 0);
   double min_radius = std::numeric_limits<double>::infinity();
   double min_rayleigh = std::numeric_limits<double>::infinity();
+  std::string min_rayleigh_particle;  // which particle sets the step, for a plan that cannot be run
+  const auto consider_particle = [&](double r, const Material& m) {
+    min_radius = std::min(min_radius, r);
+    const double rayleigh = rayleigh_time_s(r, m.density_kg_per_m3, m.shear_modulus_Pa, m.poisson_ratio);
+    if (!(rayleigh >= min_rayleigh))
+      min_rayleigh_particle = fmt::format("radius {:.4g} m, material '{}': shear modulus {:.4g} Pa, density {:.4g} "
+                                          "kg/m^3",
+                                          r, m.name, m.shear_modulus_Pa, m.density_kg_per_m3);
+    min_rayleigh = std::min(min_rayleigh, rayleigh);
+  };
+  double planned_particles = 0.0;
   for (const InsertionSpec& in : spec.insertions) {
     Insertion ins = build_insertion(spec, in, materials, tags);
     particle_material[ins.material] = 1;
+    planned_particles += static_cast<double>(ins.target_count);
     const Material& m = materials[ins.material];
-    auto consider = [&](double r) {
-      min_radius = std::min(min_radius, r);
-      min_rayleigh = std::min(min_rayleigh, rayleigh_time_s(r, m.density_kg_per_m3, m.shear_modulus_Pa, m.poisson_ratio));
-    };
+    auto consider = [&](double r) { consider_particle(r, m); };
     for (const SizeClass& c : ins.sizes) consider(c.radius_m);
     for (const NewParticle& p : ins.from_file) consider(p.radius_m);
     std::string temperature;
@@ -608,16 +646,15 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     for (std::size_t i = 0; i < saved.particles.size(); ++i) {
       const MaterialIndex mi = initial_materials[saved.particles.material[i]];
       particle_material[mi] = 1;
-      const Material& m = materials[mi];
-      min_radius = std::min(min_radius, saved.particles.radius_m[i]);
-      min_rayleigh = std::min(min_rayleigh, rayleigh_time_s(saved.particles.radius_m[i], m.density_kg_per_m3,
-                                                            m.shear_modulus_Pa, m.poisson_ratio));
+      consider_particle(saved.particles.radius_m[i], materials[mi]);
     }
+    planned_particles += static_cast<double>(saved.particles.size());
     lines.push_back(fmt::format("initial state: {} particles from checkpoint '{}' (taken at t = {:.6g} s), with "
                                 "their velocities, temperatures, contact history and bonds; this run starts at t = 0",
                                 saved.particles.size(), file.string(), saved.time_s));
   }
   if (impl.plan.insertions.empty() && !initial) fail(SourceLocation{spec.file, 0, 0, "insertions"}, "no insertions: there would be no particles");
+  check_particle_memory(planned_particles, SourceLocation{spec.file, 0, 0, "insertions"});
   fill_pair_table(materials, spec, particle_material);
 
   if (spec.heat.enabled) {
@@ -816,6 +853,12 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                                         std::round(stage.duration_s / dt)));
     impl.plan.stages.push_back(std::move(stage));
   }
+  check_stage_step_counts(planned_stages(impl.plan, impl.simulation->walls, dt),
+                          spec.time_step_s > 0.0
+                              ? "the scenario's time_step"
+                              : fmt::format("{:.3g} x the Rayleigh time {:.4g} s of the particle with {}", dt / min_rayleigh,
+                                            min_rayleigh, min_rayleigh_particle),
+                          SourceLocation{spec.file, 0, 0, "stages"});
   impl.plan.sample_interval_s = spec.output.interval_s;
   impl.plan.region_names = tags;
   if (const SnapshotSpec& snap = spec.output.snapshots; snap.enabled) {

@@ -72,6 +72,13 @@ bool spun(const WallBody& w) { return norm2(w.spin_axis) > 0.0; }
 
 /// A stage that ends at a drill depth: the time its wall needs to get there at its
 /// feed speed (infinite when it is not moving).
+/// A step count from a number of steps that the plan's limits keep below 1e12; one that
+/// is not finite (a wall that never gets there) counts 0, "not known", rather than
+/// overflowing the conversion.
+std::uint64_t whole_steps(double steps) {
+  return std::isfinite(steps) && steps > 0.0 ? static_cast<std::uint64_t>(steps) : 0;
+}
+
 double time_to_depth_s(const Simulation& sim, const Stage& stage) {
   const WallBody& wall = sim.walls.bodies[static_cast<std::size_t>(stage.depth_body)];
   const double speed = norm(wall.motion.velocity_m_per_s);
@@ -296,7 +303,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     const bool ends_by_time = !stage.until_settled && !stage.ends_at_depth() && !stage.ends_on_measurement();
     const std::uint64_t planned_steps =
         inside                ? inside->planned_steps
-        : stage.ends_at_depth() ? static_cast<std::uint64_t>(std::ceil(time_to_depth_s(sim, stage) / dt))
+        : stage.ends_at_depth() ? whole_steps(std::ceil(time_to_depth_s(sim, stage) / dt))
         : stage.until_settled || stage.ends_on_measurement() ? 0
         : frozen            ? static_cast<std::uint64_t>(std::ceil(stage.duration_s / step_s - 1e-9))
                             : static_cast<std::uint64_t>(std::llround(stage.duration_s / dt));

@@ -12,10 +12,13 @@ FIG_WIDTH x FIG_HEIGHT pixels into DIR (default: the first OUTDIR's plots/ folde
 Several runs are overlaid, one colour per run, labelled by --labels or their folder
 names. A figure whose columns no run has is left out, and the message says so.
 --section draws the particle temperature on a plane through an axis from each run's
-latest snapshot (particles.pvd), walls cut by the plane as lines.
+latest snapshot (particles.pvd), walls cut by the plane as lines, beside the temperature
+of every particle along that axis. Prints the path of each figure, then (on stderr) the
+folder they are in.
 
-Exit status: 0 figures written; 2 bad input (no such run, no data, a bad option);
-3 matplotlib or numpy is missing.
+Exit status: 0 figures written; 2 bad input (no such run, no data, a bad option, a CSV
+that cannot be read: one line "regodem plot: error: FILE:LINE: what is wrong");
+3 matplotlib or numpy is missing; 1 a fault of this script (one line says where).
 """
 import argparse
 import csv
@@ -24,6 +27,7 @@ import os
 import re
 import struct
 import sys
+import traceback
 import xml.etree.ElementTree as ET
 import zlib
 
@@ -34,17 +38,26 @@ try:
     matplotlib.use("Agg")  # files only, no display
     import matplotlib.pyplot as plt
     from matplotlib.collections import EllipseCollection, LineCollection
+    from matplotlib.colors import BoundaryNorm, ListedColormap
 except ImportError as error:
     print(f"regodem plot: error: {error}: plotting needs matplotlib and numpy for {sys.executable} "
           "(Debian: apt-get install python3-matplotlib, as scripts/setup-debian.sh does)", file=sys.stderr)
     sys.exit(3)
 
 FIG_WIDTH, FIG_HEIGHT, DPI = 960, 600, 120  # pixels; documented in docs/outputs.md
-HEADER = re.compile(r"^(.*?)\s*\[(.*)\]$")
+HEADER = re.compile(r"^(.*?)\s*\[([^\[\]]*)\]$")  # "sieve[1].temperature [K]": the last [...] is the unit
 
 
 class BadInput(Exception):
     pass
+
+
+def is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
 
 
 # ---------------------------------------------------------------------------------
@@ -52,30 +65,86 @@ class BadInput(Exception):
 
 
 class Series:
-    """One CSV: columns by name, each with its unit."""
+    """One CSV: columns by name, each with its unit. Anything wrong with the file is a
+    BadInput naming the file and line ("FILE:LINE: what"), except a last line without its
+    newline that does not parse: a row a running run is still writing, left out with a note."""
 
-    def __init__(self, path):
+    def __init__(self, path, required=()):
         self.path = path
-        with open(path, newline="") as f:
-            rows = list(csv.reader(f))
-        if not rows:
-            raise BadInput(f"{path}: empty file")
+        try:
+            with open(path, "rb") as f:
+                content = f.read()
+        except OSError as error:
+            raise BadInput(f"{path}: cannot read it: {error.strerror}")
+        if not content.strip():
+            raise BadInput(f"{path}:1: empty file (a CSV begins with a header line of \"name [unit]\" columns)")
+        try:
+            text = content.decode("utf-8")
+        except UnicodeDecodeError as error:
+            line = content.count(b"\n", 0, error.start) + 1
+            raise BadInput(f"{path}:{line}: not text: byte 0x{content[error.start]:02x} is not UTF-8")
+        if "\0" in text:
+            line = text.count("\n", 0, text.index("\0")) + 1
+            raise BadInput(f"{path}:{line}: holds a NUL byte (not a CSV file, or a damaged one)")
+        lines = text.split("\n")
+        unfinished = lines.pop()  # "" when the file ends with a newline, as RegoDEM's do
+        if not lines:
+            raise BadInput(f"{path}:1: the header line is incomplete (no newline at its end)")
+        header = self.fields(lines[0], path, 1)
         self.names, self.units = [], {}
-        for field in rows[0]:
+        if all(is_number(field) for field in header):
+            raise BadInput(f"{path}:1: no header: the first line holds numbers where the column names "
+                           f"(\"name [unit]\") should be")
+        for k, field in enumerate(header):
             match = HEADER.match(field.strip())
-            name, unit = (match.group(1), match.group(2)) if match else (field.strip(), "")
+            name, unit = (match.group(1).strip(), match.group(2)) if match else (field.strip(), "")
+            if not name or is_number(name):
+                raise BadInput(f"{path}:1: column {k + 1} of the header has no name ('{field}')")
+            if name in self.units:
+                raise BadInput(f"{path}:1: column '{name}' appears twice in the header")
             self.names.append(name)
             self.units[name] = unit
+        for name in required:
+            if name not in self.units:
+                raise BadInput(f"{path}:1: no '{name}' column in the header")
         width = len(self.names)
         data = []
-        for row in rows[1:]:
-            if len(row) != width:
-                continue  # a row being written while we read (a run in progress)
+        for number, line in enumerate(lines[1:], start=2):
+            if line.strip():
+                data.append(self.row(line, path, number, width))
+        if unfinished.strip():
+            number = len(lines) + 1
             try:
-                data.append([float(v) if v not in ("", "nan") else math.nan for v in row])
-            except ValueError:
-                continue
+                data.append(self.row(unfinished, path, number, width))
+            except BadInput:
+                print(f"regodem plot: note: {path}:{number}: the last row is incomplete (no newline at its end: "
+                      "a run still writing it?); left out", file=sys.stderr)
         self.data = np.array(data, dtype=float).reshape(-1, width)
+
+    @staticmethod
+    def fields(line, path, number):
+        try:
+            return next(csv.reader([line.rstrip("\r")]))
+        except (csv.Error, StopIteration) as error:
+            raise BadInput(f"{path}:{number}: not a CSV line ({error})")
+
+    def row(self, line, path, number, width):
+        fields = self.fields(line, path, number)
+        if len(fields) != width:
+            raise BadInput(f"{path}:{number}: {len(fields)} fields where the header has {width} "
+                           "(a truncated or damaged row)")
+        values = []
+        for name, field in zip(self.names, fields):
+            field = field.strip()
+            if field == "":
+                values.append(math.nan)
+                continue
+            try:
+                values.append(float(field))
+            except ValueError:
+                shown = field if len(field) <= 40 else field[:37] + "..."
+                raise BadInput(f"{path}:{number}: column '{name}' holds '{shown}', not a number")
+        return values
 
     def has(self, name):
         return name in self.units
@@ -96,14 +165,15 @@ class Run:
         if not os.path.isdir(directory):
             raise BadInput(f"'{directory}' is not a directory (give the OUTDIR of a `regodem run`)")
         path = os.path.join(directory, "time_series.csv")
-        self.series = Series(path) if os.path.isfile(path) else None
+        self.series = Series(path, required=("time",)) if os.path.isfile(path) else None
         self.others = {}
         for name in sorted(os.listdir(directory)):
             if name.endswith(".csv") and name != "time_series.csv":
+                # Not a file RegoDEM writes there: one it cannot read is skipped, not an error.
                 try:
                     self.others[name] = Series(os.path.join(directory, name))
-                except (BadInput, OSError, csv.Error) as error:
-                    print(f"regodem plot: skipping {os.path.join(directory, name)}: {error}", file=sys.stderr)
+                except BadInput as error:
+                    print(f"regodem plot: skipping {error}", file=sys.stderr)
         self.profiles = {}  # profiles/NAME.csv: long form, one row per bin and instant
         for sub in ("profiles", "regions"):  # the measurements' CSV files
             folder = os.path.join(directory, sub)
@@ -243,6 +313,7 @@ def plot_wall_forces(runs, out_dir, written):
             continue
         t = s.column("time")
         walls = [n[: -len(".force_x")] for n in s.names if n.endswith(".force_x")]
+        walls = [w for w in walls if all(s.has(f"{w}.{q}_{a}") for q in ("force", "torque") for a in "xyz")]
         for wall in walls:
             force = np.sqrt(sum(s.column(f"{wall}.force_{a}") ** 2 for a in "xyz"))
             torque = np.sqrt(sum(s.column(f"{wall}.torque_{a}") ** 2 for a in "xyz"))
@@ -433,7 +504,15 @@ def latest_snapshot(run, collection):
     return time, os.path.join(run.directory, file)
 
 
+MM = 1e3  # the section is drawn in millimetres
+
+
 def plot_section(run, args, out_dir, written, name):
+    """The particles cut by a plane through an axis, coloured by temperature, with the walls
+    the plane cuts as lines; beside it, every particle's temperature along that axis (mean
+    and range of each region's particles in bins), on the same scale. The view spans the
+    bed along the axis and the particles and walls across it; the panels are sized to fill
+    the figure, and the title is wrapped to fit it."""
     time, path = latest_snapshot(run, "particles.pvd")
     if path is None:
         raise BadInput(f"{run.directory}: no particles.pvd: --section needs snapshots "
@@ -450,43 +529,186 @@ def plot_section(run, args, out_dir, written, name):
     # shows every particle within it at its full radius.
     cut = np.abs(distance) < (slab if slab else radius)
     shown_r = radius[cut] if slab else np.sqrt(np.maximum(radius[cut] ** 2 - distance[cut] ** 2, 0.0))
-    fig, (ax,) = new_figure()
-    if "temperature" in particles:
-        values, label, cmap = particles["temperature"][cut], "temperature [K]", "turbo"
-    else:
-        values, label, cmap = particles["region"][cut].astype(float), "region (heat is off)", "tab10"
+    heat = "temperature" in particles
+    region_names = particles.get("field:region_names", [])
+    if heat:
+        colour_by, cmap = particles["temperature"], plt.get_cmap("turbo")
+        norm = plt.Normalize(float(np.nanmin(colour_by)), float(np.nanmax(colour_by))) if len(colour_by) else None
+    else:  # each region in its colour of the profile beside it (C0, C1, ...)
+        colour_by = particles["region"].astype(float)
+        count = max(len(region_names), int(colour_by.max()) + 1 if len(colour_by) else 1)
+        cmap = ListedColormap([f"C{k % 10}" for k in range(count)])
+        norm = BoundaryNorm(np.arange(count + 1) - 0.5, count)
     offsets = np.column_stack([points[cut, across], points[cut, axis]])
-    disks = EllipseCollection(2 * shown_r, 2 * shown_r, np.zeros_like(shown_r), units="xy", offsets=offsets,
-                              transOffset=ax.transData, cmap=cmap, linewidths=0)
-    disks.set_array(values)
-    ax.add_collection(disks)
-    if len(values):
-        fig.colorbar(disks, ax=ax, label=label)
     _, wall_path = latest_snapshot(run, "walls.pvd")
-    extent = [offsets - shown_r[:, None], offsets + shown_r[:, None]] if len(offsets) else []
-    if wall_path:
-        segments = draw_wall_cuts(ax, read_vtp(wall_path), normal, through[normal], across, axis)
-        if len(segments):
-            extent.append(segments.reshape(-1, 2))
-    if extent:  # the particles and the walls they sit in
-        corners = np.concatenate(extent)
-        low, high = corners.min(axis=0), corners.max(axis=0)
-        pad = 0.03 * max(high - low)
-        ax.set_xlim(low[0] - pad, high[0] + pad)
-        ax.set_ylim(low[1] - pad, high[1] + pad)
-    ax.set_aspect("equal")
+    segments = wall_cuts(read_vtp(wall_path), normal, through[normal], across, axis) if wall_path else \
+        np.zeros((0, 2, 2))
+
+    # The view: along the axis, the bed (every particle); across it, the cut particles and
+    # the walls the plane cuts.
+    if len(points):
+        along = (float((points[:, axis] - radius).min()), float((points[:, axis] + radius).max()))
+    elif len(segments):
+        along = (float(segments[:, :, 1].min()), float(segments[:, :, 1].max()))
+    else:
+        along = (-1e-3, 1e-3)
+    xs = [offsets[:, 0] - shown_r, offsets[:, 0] + shown_r] if len(offsets) else []
+    if len(segments):
+        xs.append(segments[:, :, 0].ravel())
+    if not xs and len(points):
+        xs = [points[:, across] - radius, points[:, across] + radius]
+    xs = np.concatenate(xs) if xs else np.array([-1e-3, 1e-3])
+    size = max(float(xs.max() - xs.min()), along[1] - along[0], 1e-9)
+    pad = 0.03 * size
+    xlim = ((float(xs.min()) - pad) * MM, (float(xs.max()) + pad) * MM)
+    ylim = ((along[0] - pad) * MM, (along[1] + pad) * MM)
+    # A bed wider than its panel may show the walls above it (a cup, a lid, a drill) up to their top.
+    y_top = max(ylim[1], (float(segments[:, :, 1].max()) + pad) * MM) if len(segments) else ylim[1]
+
+    fig = plt.figure(figsize=(FIG_WIDTH / DPI, FIG_HEIGHT / DPI), dpi=DPI)
+    ax = fig.add_axes([0.1, 0.1, 0.5, 0.8])
+    cax = fig.add_axes([0.62, 0.1, 0.02, 0.8])
+    profile = fig.add_axes([0.75, 0.1, 0.2, 0.8])
+    disks = EllipseCollection(2 * shown_r * MM, 2 * shown_r * MM, np.zeros_like(shown_r), units="xy",
+                              offsets=offsets * MM, transOffset=ax.transData, cmap=cmap, norm=norm, linewidths=0)
+    disks.set_array(colour_by[cut])  # on the whole bed's scale
+    ax.add_collection(disks)
+    if len(segments):
+        ax.add_collection(LineCollection(segments * MM, colors="0.2", linewidths=1.0))
     names = "xyz"
-    ax.set_xlabel(f"{names[across]} [m]")
-    ax.set_ylabel(f"{names[axis]} [m]")
+    ax.set_xlabel(f"{names[across]} [mm]")
+    ax.set_ylabel(f"{names[axis]} [mm]")
+    if heat:
+        fig.colorbar(disks, cax=cax, label="temperature [K]")
+    else:
+        bar = fig.colorbar(disks, cax=cax, label="region (heat is off)", ticks=np.arange(cmap.N))
+        bar.ax.set_yticklabels([region_names[k] if k < len(region_names) else f"region {k}" for k in range(cmap.N)])
+    draw_profile(profile, particles, points[:, axis] * MM, radius * MM, heat, names[axis])
+    profile.tick_params(labelleft=False)
+    profile.grid(alpha=0.3)
+
     where = f"{names[normal]} = {through[normal]:g} m"
-    ax.set_title(f"{run.label}: section through the {names[axis]} axis ({where}), t = {time:.6g} s, "
-                 f"{int(cut.sum())} particles")
-    fig.tight_layout()
+    if slab:
+        where += f", a slab {args.section_thickness:g} m thick"
+    # The title's pieces: the label may break between its words, the rest between pieces.
+    words = run.label.split()
+    if words:
+        words[-1] += ":"
+    pieces = words + [p.replace(" ", "\u00a0") for p in (
+        f"{'temperature' if heat else 'region'} on the section", f"through the {names[axis]} axis",
+        f"at {where},", f"t = {time:.4g} s,", f"{int(cut.sum())} particles cut;",
+        f"right: all {len(radius)} particles", f"by {names[axis]}")]
+    layout_section(fig, ax, cax, profile, pieces, xlim, ylim, y_top)
     save(fig, out_dir, name, written)
 
 
-def draw_wall_cuts(ax, walls, normal, level, across, axis):
-    """The lines where the plane cuts the wall triangles."""
+def draw_profile(ax, particles, along, radius, heat, axis_name):
+    """Each region's particles in bins along the axis (1.5 of its median diameters wide):
+    mean temperature and its range, or with heat off the particles per bin."""
+    region = particles.get("region")
+    region_names = particles.get("field:region_names", [])
+    groups = []  # name, colour (the section's with heat off), which particles
+    if region is not None and len(region):
+        for code in np.unique(region):
+            name = region_names[code] if code < len(region_names) else f"region {code}"
+            groups.append((name, f"C{code % 10}", region == code))
+    elif len(along):
+        groups.append(("all particles", "C0", np.ones(len(along), dtype=bool)))
+    ax.set_xlabel("temperature [K]" if heat else "particles per bin")
+    if not groups:
+        return
+    low, high = float((along - radius).min()), float((along + radius).max())
+    for name, colour, chosen in groups:
+        width = max(3 * float(np.median(radius[chosen])), (high - low) / 60, 1e-9)
+        edges = np.arange(low, high + width, width)
+        index = np.clip(np.digitize(along[chosen], edges) - 1, 0, len(edges) - 2)
+        values = particles["temperature"][chosen] if heat else None
+        centres, mean, lowest, highest, count = [], [], [], [], []
+        for k in range(len(edges) - 1):
+            inside = index == k
+            if not inside.any():
+                continue
+            centres.append((edges[k] + edges[k + 1]) / 2)
+            count.append(int(inside.sum()))
+            if heat:
+                mean.append(float(np.mean(values[inside])))
+                lowest.append(float(np.min(values[inside])))
+                highest.append(float(np.max(values[inside])))
+        tag = f"{name} ({int(chosen.sum())})"
+        if heat:
+            ax.plot(mean, centres, marker=".", color=colour, label=tag)
+            ax.fill_betweenx(centres, lowest, highest, color=colour, alpha=0.15, linewidth=0)
+        else:
+            ax.plot(count, centres, marker=".", color=colour, label=tag)
+    ax.legend(fontsize="x-small", loc="best", title_fontsize="x-small",
+              title=f"by {axis_name}: mean, min to max" if heat else f"by {axis_name}")
+
+
+def layout_section(fig, ax, cax, profile, pieces, xlim, ylim, y_top):
+    """Places the title (`pieces` joined by spaces, broken into lines between pieces to fit
+    the width), the section (its limits `xlim` and `ylim`, in a box as wide for a
+    millimetre as it is tall), the colour bar and the profile, in pixels, measuring the
+    labels as drawn, so that together they fill the figure's width and nothing crosses
+    its edges. The profile keeps at least 30 % of the width; a section too wide for the
+    rest shows more above the bed, up to `y_top`, and is otherwise centred in the height."""
+    width, height = FIG_WIDTH, FIG_HEIGHT
+    margin, gap, bar_width = 8.0, 12.0, 16.0
+    renderer = fig.canvas.get_renderer()
+    text = fig.text(0.5, 1 - margin / height, "", ha="center", va="top")
+    for size in (11, 10, 9, 8):  # smaller only when a piece alone is wider than the figure
+        text.set_fontsize(size)
+        lines = [""]
+        for piece in pieces:
+            candidate = f"{lines[-1]} {piece}".strip()
+            text.set_text(candidate)
+            if lines[-1] and text.get_window_extent(renderer).width > width - 2 * margin:
+                lines.append(piece)
+            else:
+                lines[-1] = candidate
+        text.set_text("\n".join(lines))
+        box = text.get_window_extent(renderer)
+        if box.width <= width - 2 * margin:
+            break
+    top = height - margin - box.height - gap
+
+    def decorations(axes):
+        """The pixels the labels of `axes` take beyond its box: left, bottom, right, top."""
+        tight = axes.get_tightbbox(renderer)
+        frame = axes.get_window_extent(renderer)
+        return (max(frame.x0 - tight.x0, 0.0), max(frame.y0 - tight.y0, 0.0), max(tight.x1 - frame.x1, 0.0),
+                max(tight.y1 - frame.y1, 0.0))
+
+    for _ in range(3):  # place, measure the labels as drawn, place again
+        ax.set_xlim(*xlim)
+        ax.set_ylim(*ylim)
+        profile.set_ylim(*ylim)
+        fig.canvas.draw()
+        left_ax, bottom_ax, right_ax, top_ax = decorations(ax)
+        left_profile, bottom_profile, right_profile, top_profile = decorations(profile)
+        right_bar = decorations(cax)[2]
+        bottom = margin + max(bottom_ax, bottom_profile)
+        room_h = top - max(top_ax, top_profile) - bottom
+        room_w = (width - 2 * margin - left_ax - right_ax - gap - bar_width - right_bar - 2 * gap - left_profile -
+                  right_profile)
+        section_w = min(room_h * (xlim[1] - xlim[0]) / (ylim[1] - ylim[0]), 0.7 * room_w)
+        section_h = section_w * (ylim[1] - ylim[0]) / (xlim[1] - xlim[0])
+        if section_h < room_h and ylim[1] < y_top:  # room above the bed: show the walls there
+            ylim = (ylim[0], min(y_top, ylim[0] + (ylim[1] - ylim[0]) * room_h / section_h))
+            section_h = section_w * (ylim[1] - ylim[0]) / (xlim[1] - xlim[0])
+        y0 = bottom + (room_h - section_h) / 2
+        x0 = margin + left_ax
+        bar_x = x0 + section_w + right_ax + gap
+        profile_x = bar_x + bar_width + right_bar + 2 * gap + left_profile
+        ax.set_position([x0 / width, y0 / height, section_w / width, section_h / height])
+        cax.set_position([bar_x / width, y0 / height, bar_width / width, section_h / height])
+        profile.set_position([profile_x / width, y0 / height, (room_w - section_w) / width, section_h / height])
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
+    profile.set_ylim(*ylim)
+
+
+def wall_cuts(walls, normal, level, across, axis):
+    """The segments (n x 2 x 2: across, along) where the plane cuts the wall triangles."""
     points = walls.get("Points")
     triangles = walls.get("Polys")
     if points is None or triangles is None:
@@ -504,9 +726,7 @@ def draw_wall_cuts(ax, walls, normal, level, across, axis):
                 crossing.append((p[across], p[axis]))
         if len(crossing) == 2:
             segments.append(crossing)
-    if segments:
-        ax.add_collection(LineCollection(segments, colors="0.2", linewidths=1.0))
-    return np.array(segments, dtype=float)
+    return np.array(segments, dtype=float).reshape(-1, 2, 2)
 
 
 # ---------------------------------------------------------------------------------
@@ -561,10 +781,21 @@ def main(argv):
     except BadInput as error:
         print(f"regodem plot: error: {error}", file=sys.stderr)
         return 2
+    except Exception as error:  # a fault of this script: one line that says where, not a traceback
+        frame = traceback.extract_tb(error.__traceback__)[-1]
+        print(f"regodem plot: error: unexpected {type(error).__name__} at {frame.filename}:{frame.lineno} "
+              f"({frame.name}): {error}; please report it with the run's files", file=sys.stderr)
+        return 1
     for path in written:
         print(path)
+    sys.stdout.flush()  # the paths, then the lines on stderr, in that order on a terminal
     if missing:
         print("not drawn: " + "; ".join(missing), file=sys.stderr)
+    snapshots = [os.path.join(r.directory, "particles.pvd") for r in runs
+                 if os.path.isfile(os.path.join(r.directory, "particles.pvd"))]
+    print(f"regodem plot: {len(written)} figure{'' if len(written) == 1 else 's'} in "
+          f"{os.path.join(out_dir, '')}" + (f"; for ParaView: {', '.join(snapshots)}" if snapshots else ""),
+          file=sys.stderr)
     return 0
 
 

@@ -102,6 +102,15 @@ CentralCompositeDesign make_central_composite_design(const std::vector<DesignFac
     design.runs.push_back(make_point(factors, PointType::centre, std::vector<double>(k, 0.0)));
   design.centre_points = options.centre_points;
 
+  // CENTRE ± α STEP can overflow although both are finite (1e308 + 1.4e308): a design
+  // with inf in it would be written and run.
+  for (const DesignPoint& point : design.runs)
+    for (std::size_t i = 0; i < k; ++i)
+      if (!std::isfinite(point.actual[i]))
+        throw InputError(fmt::format("factor '{}': its value at coded {:.6g} is not a finite number (centre {:.6g}, "
+                                     "step {:.6g}); choose a smaller centre or step",
+                                     factors[i].name, point.coded[i], factors[i].centre, factors[i].step));
+
   for (std::size_t r = 0; r < design.runs.size(); ++r) design.runs[r].standard_order = static_cast<int>(r + 1);
 
   if (options.order == RunOrder::random) {

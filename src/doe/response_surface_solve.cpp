@@ -105,11 +105,14 @@ std::vector<double> solve_for_one_factor(const PolynomialModel& model, double ta
                                  model.factor_names[free_factor]));
   std::vector<double> roots;
   if (a == 0.0) {
-    roots.push_back(-c / b);
+    // Beyond the largest double (y = 1e308 on a shallow line): no value a factor can take.
+    if (std::isfinite(-c / b)) roots.push_back(-c / b);
     return roots;
   }
   const double discriminant = b * b - 4.0 * a * c;
-  if (discriminant < 0.0) return roots;
+  // Not finite: the target is so far out (y = 1e308) that b² − 4ac overflows, and both
+  // roots would come out as ±inf and 0, the second one no root at all.
+  if (discriminant < 0.0 || !std::isfinite(discriminant)) return roots;
   // q = −(b + sgn(b)·√D)/2; roots q/a and c/q: no subtraction of nearly equal numbers.
   const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
   roots.push_back(q / a);

@@ -196,8 +196,12 @@ std::optional<std::string> read_input_file(const YamlValue& value, const Scenari
   if (path.is_relative()) path = std::filesystem::path(references.base_directory) / path;
   std::error_code ignored;
   path = std::filesystem::absolute(path, ignored).lexically_normal();
-  if (!std::filesystem::is_regular_file(path, ignored)) {
-    value.error(fmt::format("no such file: '{}'", path.string()));
+  const std::filesystem::file_status status = std::filesystem::status(path, ignored);
+  if (!std::filesystem::is_regular_file(status)) {
+    value.error(std::filesystem::is_directory(status)
+                    ? fmt::format("'{}' is a directory; give the file in it", path.string())
+                : std::filesystem::exists(status) ? fmt::format("'{}' is not a regular file", path.string())
+                                                  : fmt::format("no such file: '{}'", path.string()));
     return std::nullopt;
   }
   return path.string();

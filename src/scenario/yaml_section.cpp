@@ -3,8 +3,10 @@
 // insert missing keys into the tree: the entries are collected once, in file order.
 #include "scenario/yaml_section.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -56,7 +58,7 @@ std::string YamlValue::describe_kind() const {
   if (node_.IsSequence()) return "a list";
   if (node_.IsMap()) return "a map";
   if (node_.IsNull()) return "nothing";
-  return "'" + node_.Scalar() + "'";
+  return "'" + printable_excerpt(node_.Scalar()) + "'";
 }
 
 std::optional<std::string> YamlValue::text() const {
@@ -139,13 +141,116 @@ std::optional<std::string> YamlValue::choice(const std::vector<std::string>& all
   return std::nullopt;
 }
 
+std::string printable_excerpt(std::string_view text, std::size_t max_characters) {
+  std::string out;
+  std::size_t shown = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (shown == max_characters) return out + "...";
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if (byte >= 0x20 && byte != 0x7f) {
+      out += text[i];  // UTF-8 sequences pass whole: load_yaml has checked them
+    } else {
+      out += fmt::format("\\x{:02x}", byte);
+    }
+    if (byte < 0x80 || byte >= 0xc0) ++shown;  // count characters, not continuation bytes
+  }
+  return out;
+}
+
+namespace {
+
+/// Line and column (1-based) of byte `offset` of `text`.
+std::pair<int, int> line_and_column(std::string_view text, std::size_t offset) {
+  int line = 1, column = 1;
+  for (std::size_t i = 0; i < offset; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+/// The length of the UTF-8 sequence that starts at text[i], or 0 if it is not one.
+std::size_t utf8_sequence_length(std::string_view text, std::size_t i) {
+  const auto lead = static_cast<unsigned char>(text[i]);
+  const std::size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xe ? 3 : (lead >> 3) == 0x1e ? 4 : 0;
+  if (length == 0 || i + length > text.size()) return 0;
+  for (std::size_t k = 1; k < length; ++k)
+    if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return 0;
+  return length;
+}
+
+/// A scenario is UTF-8 text: a NUL, another control character or a byte that is not
+/// UTF-8 means a binary or damaged file, which the YAML parser would otherwise report
+/// as an "unknown escape character" or echo back raw.
+void check_is_text(std::string_view text, const std::string& file) {
+  for (std::size_t i = 0; i < text.size();) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    const std::size_t length = utf8_sequence_length(text, i);
+    const bool control = byte < 0x20 && byte != '\t' && byte != '\n' && byte != '\r';
+    if (length == 0 || control || byte == 0x7f) {
+      const auto [line, column] = line_and_column(text, i);
+      throw InputError(fmt::format("{}:{}:{}: {} (byte 0x{:02x}): this is not a text file (a scenario is YAML, as UTF-8 "
+                                   "text)",
+                                   file, line, column,
+                                   byte == 0 ? "a NUL byte" : length == 0 ? "not UTF-8" : "a control character",
+                                   byte));
+    }
+    i += length;
+  }
+}
+
+/// Lists and maps nested deeper than any scenario needs ("[[[[..."): the parser would
+/// recurse until it gives up with "bad file".
+void check_nesting(std::string_view text, const std::string& file) {
+  constexpr int kMaxDepth = 64;
+  int depth = 0;
+  char quote = 0;
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') comment = false;
+    if (comment) continue;
+    if (quote) {
+      if (c == quote) quote = 0;
+      continue;
+    }
+    if (c == '"' || c == '\'') quote = c;
+    else if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\n')) comment = true;
+    else if (c == '[' || c == '{') {
+      if (++depth > kMaxDepth) {
+        const auto [line, column] = line_and_column(text, i);
+        throw InputError(fmt::format("{}:{}:{}: lists or maps nested more than {} deep; no scenario needs that", file,
+                                     line, column, kMaxDepth));
+      }
+    } else if (c == ']' || c == '}') {
+      depth = std::max(0, depth - 1);
+    }
+  }
+}
+
+}  // namespace
+
 YAML::Node load_yaml(const std::string& text, const std::string& file) {
+  check_is_text(text, file);
+  check_nesting(text, file);
+  std::vector<YAML::Node> documents;
   try {
-    return YAML::Load(text);
+    documents = YAML::LoadAll(text);
   } catch (const YAML::ParserException& problem) {
     throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", file, problem.mark.line + 1,
                                  problem.mark.column + 1, problem.msg));
   }
+  // A second document ("---" and more) would be silently ignored: refuse it.
+  for (std::size_t k = 1; k < documents.size(); ++k)
+    if (!documents[k].IsNull())
+      throw InputError(fmt::format("{}:{}: a second YAML document (after '---'): a scenario is one document; remove "
+                                   "it, or put it in a file of its own",
+                                   file, documents[k].Mark().line + 1));
+  return documents.empty() ? YAML::Node() : documents.front();
 }
 
 bool is_valid_name(std::string_view name) {

@@ -133,8 +133,14 @@ class YamlSection {
 };
 
 /// Parses YAML text; a syntax error is an InputError "file:line:column: YAML syntax
-/// error: ..." (`file` as named in messages).
+/// error: ..." (`file` as named in messages). Refused as well, located: text that is
+/// not UTF-8 or holds a NUL or control character (a binary file), lists or maps nested
+/// more than 64 deep, and a second document after '---' (which would be ignored).
 YAML::Node load_yaml(const std::string& text, const std::string& file);
+
+/// `text` for a message: control bytes as \xNN, at most `max_characters` characters
+/// and "..." after, so that a damaged file is not echoed back raw.
+std::string printable_excerpt(std::string_view text, std::size_t max_characters = 60);
 
 /// Names of materials, walls, stages...: letters, digits, '_' and '-' (they appear in
 /// --set paths and, later, in output file names).

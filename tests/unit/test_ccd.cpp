@@ -155,6 +155,15 @@ TEST(CentralCompositeDesign, RefusesBadInput) {
   negative_alpha.alpha = -1.0;
   EXPECT_THROW(make_central_composite_design(paper_factors, negative_alpha), InputError);
   EXPECT_THROW(make_central_composite_design(paper_factors, with_centre_points(-1)), InputError);
+  // Finite centre and step whose sum overflows: the design had 'inf' in it.
+  try {
+    make_central_composite_design({{"A", "", 1e308, 1e308}, {"B", "", 1, 1}}, CcdOptions{});
+    FAIL() << "expected InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("factor 'A': its value at coded 1 is not a finite number"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 }  // namespace

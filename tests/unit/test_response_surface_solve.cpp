@@ -113,5 +113,16 @@ TEST(ResponseSurfaceSolve, ClosedFormCases) {
   EXPECT_THROW(solve_for_one_factor(interaction, 6.0, {0.0, 0.0}, 0), InputError);  // no dependence at B = 0
 }
 
+// Targets beyond the range of a double have no root (`fit --solve y=1e308` printed
+// A = -inf, and a second "root" A = 0 where y = 3): b² − 4ac or −c/b overflows.
+TEST(ResponseSurfaceSolve, ATargetPastTheLargestDoubleHasNoRoot) {
+  const std::vector<std::string> ab = {"A", "B"};
+  const PolynomialModel quadratic{ab, {{{0, 0}}, {{1, 0}}, {{2, 0}}}, {1.0, 1.0, 1.0}};
+  EXPECT_TRUE(solve_for_one_factor(quadratic, 1e308, {0.0, 0.0}, 0).empty());
+  const PolynomialModel shallow{ab, {{{0, 0}}, {{1, 0}}}, {0.0, 1e-10}};
+  EXPECT_TRUE(solve_for_one_factor(shallow, 1e308, {0.0, 0.0}, 0).empty());
+  EXPECT_EQ(solve_for_one_factor(quadratic, 3.0, {0.0, 0.0}, 0).size(), 2U);  // roots 1 and -2
+}
+
 }  // namespace
 }  // namespace regodem::doe

@@ -42,8 +42,14 @@ std::vector<ParticleRecord> read_particle_csv(const std::string& path) {
   where.fill(-1);
   for (std::size_t c = 0; c < header.size(); ++c) {
     bool known = false;
-    for (int k = 0; k < count; ++k)
-      if (header[c] == names[k]) where[k] = static_cast<int>(c), known = true;
+    for (int k = 0; k < count; ++k) {
+      if (header[c] != names[k]) continue;
+      if (where[k] >= 0)
+        throw InputError(fmt::format("{}:{}: the column '{}' appears twice (columns {} and {}); which one is meant?",
+                                     path, line_number, names[k], where[k] + 1, c + 1));
+      where[k] = static_cast<int>(c);
+      known = true;
+    }
     if (!known)
       throw InputError(fmt::format("{}:{}: unknown column '{}' (expected x, y, z, radius, and optionally vx, vy, vz, "
                                    "temperature; SI units)",
@@ -75,6 +81,7 @@ std::vector<ParticleRecord> read_particle_csv(const std::string& path) {
       return v;
     };
     ParticleRecord r;
+    r.line = line_number;
     r.position_m = {value(x), value(y), value(z)};
     r.radius_m = value(radius);
     if (r.radius_m <= 0.0)

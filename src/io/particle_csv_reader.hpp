@@ -14,9 +14,11 @@ struct ParticleRecord {
   Vec3 velocity_m_per_s;
   double temperature_K = 0.0;
   bool has_temperature = false;
+  int line = 0;  // in the file, for messages
 };
 
-/// Throws InputError naming the file and line of a malformed row.
+/// Throws InputError naming the file and line of a malformed row, or of a header that
+/// names a column twice or an unknown one.
 std::vector<ParticleRecord> read_particle_csv(const std::string& path);
 
 }  // namespace regodem

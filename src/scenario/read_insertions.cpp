@@ -14,7 +14,7 @@ namespace {
 
 const std::vector<std::string> kRegionInsertionKeys{
     "region", "radius", "diameter", "sizes", "fractions_by", "count", "solid_fraction",
-    "mass",   "rate",   "interval", "velocity"};
+    "mass",   "rate",   "interval", "velocity", "allow_partial"};
 
 // The densest packing of equal spheres (Kepler): no region can hold more.
 bool is_possible_solid_fraction(double value) { return value > 0.0 && value <= 0.74; }
@@ -206,11 +206,16 @@ void read_random_insertion(const YamlSection& section, const ScenarioReferences&
                              .value_or(0.0);
   insertion.initial_velocity_m_per_s =
       section.vector("velocity", Dimension::velocity).value_or(Vec3{});
+  insertion.allow_partial = section.boolean("allow_partial").value_or(false);
 }
 
 void read_file_insertion(const YamlSection& section, const ScenarioReferences& references,
                          InsertionSpec& insertion) {
   if (const auto path = read_input_file(*section.get("file"), references)) insertion.from_file = *path;
+  insertion.max_overlap_fraction =
+      read_checked_quantity(section, "max_overlap", Dimension::dimensionless, Presence::optional,
+                            [](double v) { return v >= 0.0 && v < 1.0; }, "lie in [0, 1)")
+          .value_or(insertion.max_overlap_fraction);
 }
 
 /// A static-bed stage freezes the particles: nothing can be inserted during it.
@@ -306,6 +311,7 @@ std::optional<InsertionSpec> read_insertion(const YamlValue& item,
   const auto source = section->exactly_one_of({"region", "file"});
   std::vector<std::string> allowed{"name", "region_tag", "material", "stage",
                                    "region", "file", "temperature"};
+  if (source == "file") allowed.push_back("max_overlap");
   std::vector<std::pair<std::string, std::string>> misplaced;
   for (const std::string& key : kRegionInsertionKeys) {
     if (source == "file") {

@@ -18,6 +18,7 @@
 #include "sim/stage_plan.hpp"
 #include "sim/stage_runner.hpp"
 #include "scenario/plan_limits.hpp"
+#include "sim/overlap_scan.hpp"
 #include "sim/time_step.hpp"
 #include "thermal/thermal_wall.hpp"
 #include "thermal/time_table.hpp"
@@ -361,6 +362,33 @@ const char* heat_method_name(HeatStepping method) {
 
 double sphere_volume(double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; }
 
+/// A packing from a file must lie in the domain and not overlap itself more than the
+/// insertion allows: the contact law would blast a 90 % overlap apart on the first step.
+void check_file_packing(const ScenarioSpec& spec, const InsertionSpec& in, const std::vector<ParticleRecord>& records) {
+  const Vec3 lo = spec.domain.min_m, hi = spec.domain.max_m;
+  for (const ParticleRecord& r : records) {
+    const Vec3& x = r.position_m;
+    if (x.x - r.radius_m < lo.x || x.y - r.radius_m < lo.y || x.z - r.radius_m < lo.z || x.x + r.radius_m > hi.x ||
+        x.y + r.radius_m > hi.y || x.z + r.radius_m > hi.z)
+      fail(in.where, fmt::format("{}:{}: the particle at ({:.6g}, {:.6g}, {:.6g}) m, radius {:.4g} m, is not wholly "
+                                 "inside the domain [{:.6g}, {:.6g}, {:.6g}] to [{:.6g}, {:.6g}, {:.6g}] m",
+                                 in.from_file, r.line, x.x, x.y, x.z, r.radius_m, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z));
+  }
+  std::vector<Vec3> positions;
+  std::vector<double> radii;
+  for (const ParticleRecord& r : records) {
+    positions.push_back(r.position_m);
+    radii.push_back(r.radius_m);
+  }
+  const DeepestOverlap deepest = deepest_overlap(positions, radii);
+  if (deepest.fraction > in.max_overlap_fraction)
+    fail(in.where, fmt::format("{}: the particles of lines {} and {} overlap by {:.3g} of the smaller diameter, more "
+                               "than the {:.3g} accepted (`max_overlap`); the contact law would fling them apart. Is "
+                               "the file in metres, and a settled packing?",
+                               in.from_file, records[deepest.i].line, records[deepest.j].line, deepest.fraction,
+                               in.max_overlap_fraction));
+}
+
 Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, const MaterialTable& materials,
                           std::vector<std::string>& tags) {
   Insertion ins;
@@ -409,6 +437,7 @@ Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, con
       fail(in.where, fmt::format("heat is on, but {} gives no temperature for {} of its {} particles (the first is "
                                  "particle {}): add a `temperature` column or the insertion's `temperature`",
                                  in.from_file, without_temperature, records.size(), first_without + 1));
+    check_file_packing(spec, in, records);
     ins.target_count = ins.from_file.size();
     return ins;
   }
@@ -439,6 +468,7 @@ Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, con
                                in.name, count, max_particles_per_insertion));
   ins.target_count = static_cast<std::size_t>(std::llround(count));
   ins.rate_per_s = in.rate_per_s;
+  ins.allow_partial = in.allow_partial;
   ins.interval_s = in.interval_s > 0.0 ? in.interval_s : 0.01;
   return ins;
 }
@@ -518,6 +548,25 @@ BondFormation bond_formation(const ScenarioSpec& spec, const BondFormationSpec& 
                               in.materials.empty() ? "" : fmt::format(", materials {}", fmt::join(in.materials, ", ")),
                               in.region_tags.empty() ? "" : fmt::format(", regions {}", fmt::join(in.region_tags, ", "))));
   return out;
+}
+
+/// A file's particles must not reach into an analytic wall deeper than the insertion
+/// allows (fraction of the particle's diameter).
+void check_file_packing_against_walls(const Insertion& ins, const InsertionSpec& in, const WallSet& walls) {
+  for (std::size_t k = 0; k < ins.from_file.size(); ++k) {
+    const NewParticle& p = ins.from_file[k];
+    for (const WallPrimitive& w : walls.primitives) {
+      const WallProximity near = closest_wall_point(w, p.position_m);
+      if (!near.candidate) continue;
+      const double fraction = (p.radius_m - near.distance_m) / (2.0 * p.radius_m);
+      if (fraction > in.max_overlap_fraction)
+        fail(in.where,
+             fmt::format("{}: particle {} (at ({:.6g}, {:.6g}, {:.6g}) m, radius {:.4g} m) reaches into wall '{}' by "
+                         "{:.3g} of its diameter, more than the {:.3g} accepted (`max_overlap`)",
+                         in.from_file, k + 1, p.position_m.x, p.position_m.y, p.position_m.z, p.radius_m,
+                         walls.bodies[w.body].name, fraction, in.max_overlap_fraction));
+    }
+  }
 }
 
 /// Each stage's span in simulated time and its step, where the plan fixes them (a
@@ -751,6 +800,9 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     for (std::string& line : conduction_pair_lines(spec, materials, particle_material, conducting_walls))
       lines.push_back(std::move(line));
   lines.push_back(fmt::format("walls: {} ({} analytic primitives)", walls.bodies.size(), walls.primitives.size()));
+  for (std::size_t k = 0; k < impl.plan.insertions.size(); ++k)
+    if (!impl.plan.insertions[k].from_file.empty())
+      check_file_packing_against_walls(impl.plan.insertions[k], spec.insertions[k], walls);
 
   impl.rayleigh_time_s = min_rayleigh;
   double dt = spec.time_step_s > 0.0 ? spec.time_step_s : spec.rayleigh_fraction * min_rayleigh;

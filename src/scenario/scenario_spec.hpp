@@ -197,6 +197,10 @@ struct InsertionSpec {
   InsertAmount amount_kind = InsertAmount::count;
   double amount = 0.0;   // count, solid fraction (0..1) or mass in kg
   double rate_per_s = 0.0;          // particles per second; 0 = everything at the first attempt
+  bool allow_partial = false;       // a region that fills up before the count is reached: go on (else the stage fails)
+  // A file's packing: the deepest overlap accepted, between two of its particles or
+  // with an analytic wall, as a fraction of the smaller diameter (of the particle's).
+  double max_overlap_fraction = 0.05;
   double interval_s = 0.0;          // time between insertion attempts; 0 = builder's default
   Vec3 initial_velocity_m_per_s;
   std::string stage;                // stage during which it inserts; empty = the first stage

@@ -36,6 +36,7 @@ struct Insertion {
   std::size_t target_count = 0;
   double rate_per_s = 0.0;   // 0: all at the first attempt
   double interval_s = 0.0;   // between attempts when rate_per_s > 0
+  bool allow_partial = false;  // ending short of target_count is no failure
   Vec3 velocity_m_per_s;
   InitialTemperature temperature;
   std::size_t stage = 0;

@@ -9,6 +9,7 @@
 
 #include "contact/contact_law.hpp"
 #include "core/error.hpp"
+#include "sim/overlap_scan.hpp"
 
 namespace regodem {
 
@@ -589,7 +590,10 @@ double Simulation::max_speed_m_per_s() const {
 double Simulation::max_overlap_fraction() const {
   double largest = 0.0;
   const NeighborList& nl = neighbors_;
-  if (nl.offset.size() != particles.size() + 1) return 0.0;
+  // Not built for these particles yet (the t = 0 sample after an insertion): search
+  // them directly, so that a packing that starts overlapped says so.
+  if (nl.offset.size() != particles.size() + 1)
+    return deepest_overlap(particles.position_m, particles.radius_m).fraction;
   for (std::size_t i = 0; i < particles.size(); ++i)
     for (std::uint32_t k = nl.offset[i]; k < nl.offset[i + 1]; ++k) {
       const std::uint32_t j = nl.partner[k];

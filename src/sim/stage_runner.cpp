@@ -361,8 +361,18 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
               observer.notice(fmt::format("insertion '{}': placed {} of {} particles at t = {:.4g} s; the region is full{}",
                                           ins->name, r.placed, r.requested, sim.time_s(),
                                           ins->finished ? fmt::format(" ({} of {} in all)", ins->inserted, ins->target_count) : ", will retry"));
+            if (ins->finished && ins->inserted < ins->target_count && !ins->allow_partial && failure.empty())
+              failure = fmt::format(
+                  "insertion '{}' placed {} of the {} particles it asks for: its region is full. Ask for fewer "
+                  "(count, solid_fraction or mass), give it a larger region, or set `allow_partial: true` to go on "
+                  "with what fits",
+                  ins->name, ins->inserted, ins->target_count);
           }
           insertions_done = insertions_done && ins->finished;
+        }
+        if (!failure.empty()) {
+          result = StageResult::failed;
+          break;
         }
         if (sim.time_s() + 0.5 * step_s >= next_sample_s) {
           sample();
@@ -459,10 +469,23 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     }
     if (result == StageResult::finished) {
       if (last_sampled_time_s != sim.time_s()) sample();
-      for (Insertion* ins : active)
-        if (ins->inserted < ins->target_count && ins->from_file.empty())
+      for (Insertion* ins : active) {
+        if (ins->inserted >= ins->target_count || !ins->from_file.empty()) continue;
+        if (ins->allow_partial) {
           observer.notice(fmt::format("insertion '{}' placed {} of {} particles during stage '{}'", ins->name,
                                       ins->inserted, ins->target_count, stage.name));
+        } else if (failure.empty()) {
+          result = StageResult::failed;
+          failure = fmt::format(
+              "stage '{}' ended with insertion '{}' at {} of its {} particles{}: lengthen the stage{}, or set "
+              "`allow_partial: true` to go on with what was placed",
+              stage.name, ins->name, ins->inserted, ins->target_count,
+              ins->rate_per_s > 0.0 ? fmt::format(" (at {:.4g} /s they take {:.4g} s)", ins->rate_per_s,
+                                                  static_cast<double>(ins->target_count) / ins->rate_per_s)
+                                    : "",
+              ins->rate_per_s > 0.0 ? " or raise the rate" : "");
+        }
+      }
     }
     // The state a stage ends in, also a failed or interrupted one (it shows what went wrong).
     if (snapshots.due_at_stage_end(sim.time_s())) take_snapshot(0.0);

@@ -103,9 +103,9 @@ TEST_F(CliStopAndLock, ASecondWriterIsRefusedWhileARunIsLive) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / ".regodem-lock"));  // released at the end
 
   // Once it has ended, the directory is free again (a short run over it).
-  const Finished later = run_regodem({"run", "small.yaml", "-o", "out", "--overwrite", "--threads", "1", "--set",
-                                      "stages.fill.duration=0.01 s", "--set", "stages.press.duration=0.01 s"},
-                                     dir_);
+  const Finished later =
+      run_regodem({"run", "small.yaml", "-o", "out", "--overwrite", "--threads", "1", "--set", "stages.press.duration=0.01 s"},
+                  dir_);
   EXPECT_EQ(later.exit_code, 0) << later.output;
 }
 

@@ -151,5 +151,27 @@ TEST(Insertion, FractionsByMassBecomeNumberFractions) {
   EXPECT_EQ(small, 80u);  // 90 * 8/9
 }
 
+// A region asked for more than it holds: 1e6 grains of 1 mm in a 1 cm box (a solid
+// fraction of 52, where 0.74 is the densest packing) fail the stage by default, saying
+// how many were placed (it used to end "completed", exit 0); allow_partial goes on.
+TEST(Insertion, ARegionThatFillsUpFailsTheStageUnlessPartialIsAllowed) {
+  ScenarioSpec spec = box_scenario();
+  spec.insertions.push_back(box_insertion_spec(InsertAmount::count, 1e6));
+  {
+    PreparedRun run = PreparedRun::build(spec, 1);
+    Quiet quiet;
+    std::atomic<bool> stop{false};
+    const RunOutcome outcome = run.run(quiet, stop);
+    EXPECT_FALSE(outcome.completed);
+    EXPECT_NE(outcome.message.find("insertion 'grains' placed " + std::to_string(run.simulation().particles.size()) +
+                                   " of the 1000000 particles it asks for: its region is full"),
+              std::string::npos)
+        << outcome.message;
+    EXPECT_NE(outcome.message.find("allow_partial: true"), std::string::npos) << outcome.message;
+  }
+  spec.insertions.back().allow_partial = true;
+  EXPECT_GT(inserted_count(spec), 100u);  // completed, with what fits
+}
+
 }  // namespace
 }  // namespace regodem

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <system_error>
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -299,8 +300,15 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
     return exit_status::bad_input;
   }
   if (!resume) {
-    write_reproduction_files(directory, options);
-    write_generated_meshes(directory, *spec);
+    try {
+      write_reproduction_files(directory, options);
+      write_generated_meshes(directory, *spec);
+    } catch (const std::system_error& error) {
+      // A directory the run may not write into (read-only, a file in the way) is bad
+      // input, before anything ran: exit 2, not an internal error.
+      fmt::print(stderr, "regodem: error: cannot write the run's files in '{}': {}\n", directory.string(), error.what());
+      return exit_status::bad_input;
+    }
   }
 
   ProgressDisplay display(stderr, ::isatty(::fileno(stderr)) == 1, spec->output.progress_interval_s);

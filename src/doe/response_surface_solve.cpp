@@ -117,6 +117,13 @@ std::vector<double> solve_for_one_factor(const PolynomialModel& model, double ta
   const double q = -0.5 * (b + std::copysign(std::sqrt(discriminant), b));
   roots.push_back(q / a);
   if (q != 0.0 && discriminant > 0.0) roots.push_back(c / q);
+  // A root so far out that the surface overflows there (A² past the largest double) is
+  // not one a factor can take either.
+  std::erase_if(roots, [&](double root) {
+    std::vector<double> point = x;
+    point[free_factor] = root;
+    return !std::isfinite(model.evaluate(point));
+  });
   std::sort(roots.begin(), roots.end());
   return roots;
 }

@@ -293,9 +293,12 @@ void read_solve(const YamlSection& root, CalibrationSpec& spec) {
 std::optional<int> read_count(const YamlSection& root, std::string_view key) {
   const auto value = root.get(key);
   if (!value) return std::nullopt;
+  // More than any machine has cores; checked before the conversion (1e18 overflowed an
+  // int and reached the runs as a negative --threads).
+  constexpr std::uint64_t kLargest = 4096;
   const auto n = value->whole_number();
-  if (n && *n >= 1) return static_cast<int>(*n);
-  if (n) value->error("must be at least 1");
+  if (n && *n >= 1 && *n <= kLargest) return static_cast<int>(*n);
+  if (n) value->error(fmt::format("must be at least 1 and at most {}, got {}", kLargest, *n));
   return std::nullopt;
 }
 

@@ -146,7 +146,8 @@ ScenarioSpec read_tree(const YAML::Node& tree, ScenarioReadContext& context) {
   }
   const auto root = root_value.section();
   if (!root) return spec;
-  root->allow_only(kTopLevelKeys);
+  root->allow_only(kTopLevelKeys,
+                   {{"calibration", "this is a calibration file, not a scenario: run it with `regodem calibrate FILE`"}});
 
   ScenarioReferences references;
   references.base_directory = std::filesystem::path(context.file).parent_path().string();

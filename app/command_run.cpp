@@ -20,6 +20,7 @@
 #include "checkpoint_keeper.hpp"
 #include "commands.hpp"
 #include "core/error.hpp"
+#include "core/thread_choice.hpp"
 #include "human_format.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_directory.hpp"
@@ -257,7 +258,10 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
   // First of all, so that a signal while the scenario is read or built still ends in a
   // summary and a checkpoint (at the run's first step boundary).
   const std::atomic<bool>& stop_requested = install_stop_request_handlers();
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  ThreadChoice choice{options.threads, ""};  // the default: the cores other processes leave
+  if (options.threads <= 0) choice = choose_threads(omp_get_max_threads(), runnable_processes_elsewhere());
+  const int threads = choice.threads;
+  if (!choice.note.empty()) fmt::print(stderr, "regodem: note: {}\n", choice.note);
   omp_set_num_threads(threads);
 
   std::optional<ScenarioSpec> spec;

@@ -46,7 +46,8 @@ enum class ConductionLaw : std::uint8_t { force, radius, area, none };
 ///  relative_spin: the relative spin less its normal part, with R* (Ai et al. 2011 type A;
 ///                 LIGGGHTS cdt); j feels the opposite torque.
 ///  own_spin:      each body its own spin, with its own distance to the contact point
-///                 (EDEM's standard rolling friction, which the paper ran).
+///                 (EDEM's standard rolling friction; the paper does not name its
+///                 software, and we assume EDEM's forms: docs/physics.md).
 enum class RollingModel : std::uint8_t { relative_spin, own_spin };
 
 /// What the scenario says about two materials in contact (DESIGN.md section 2).

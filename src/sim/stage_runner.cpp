@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "sim/measurement_runner.hpp"
+#include "sim/recent_rate.hpp"
 #include "sim/static_heat_stepper.hpp"
 
 namespace regodem {
@@ -332,7 +333,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       while (next_sample_s <= sim.time_s() + 0.5 * step_s) next_sample_s += sample_interval;
     };
     const auto stage_clock = Clock::now();
-    const std::uint64_t done_at_stage_clock = done;  // a resumed stage times only its own steps
+    RecentRate recent_rate;  // a resumed stage times only its own steps
+    recent_rate.add(0.0, done);
     // A checkpoint at the top of an iteration: resuming replays that iteration's
     // insertions, sample and snapshot checks, which are no longer due.
     auto checkpoint_here = [&](CheckpointReason reason) {
@@ -422,10 +424,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           const double since = seconds_since(last_progress_clock);
           if (since >= observer.progress_interval_s()) {
             steps_per_s = static_cast<double>(done - last_progress_step) / since;
-            // The time left uses the stage's average rate, which does not jump about.
-            const double stage_wall = seconds_since(stage_clock);
-            const double stage_rate =
-                stage_wall > 0.0 ? static_cast<double>(done - done_at_stage_clock) / stage_wall : 0.0;
+            // The time left uses the rate of the last minute: steadier than the last
+            // interval's, and it follows a machine that gets loaded (or freed) mid-stage.
+            recent_rate.add(seconds_since(stage_clock), done);
+            const double stage_rate = recent_rate.steps_per_s();
             last_progress_clock = Clock::now();
             last_progress_step = done;
             ProgressSnapshot snap;

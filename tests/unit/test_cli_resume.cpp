@@ -31,18 +31,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
+using test::contains;
 using test::Finished;
+using test::line_count;
 using test::read_file;
 using test::run_regodem;
 using test::start_regodem;
 using test::wait_for;
-
-std::size_t line_count(const fs::path& path) {
-  const std::string text = read_file(path);
-  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 class CliResume : public ::testing::Test {
  protected:

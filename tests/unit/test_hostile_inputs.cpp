@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using test::contains;
 
 TEST(HostileInputs, EveryCaseEndsWithItsExitStatusAndMessage) {
   const fs::path source = fs::path(REGODEM_SOURCE_DIR) / "tests/data/hostile";

@@ -209,8 +209,9 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
 }
 
 std::string final_line(const Ending& ending, const RunRecorder& recorder, const CheckpointKeeper& checkpoints,
-                       const fs::path& directory) {
+                       const fs::path& directory, double time_scale_factor) {
   const RunOutcome& outcome = ending.outcome;
+  const std::string real = real_time_note(time_scale_factor, {outcome.simulated_time_s});
   const std::string where = folder_for_message(directory);
   switch (ending.status) {
     case RunStatus::completed:
@@ -220,8 +221,8 @@ std::string final_line(const Ending& ending, const RunRecorder& recorder, const 
                          format_compact(outcome.particle_steps_per_s), where);
     case RunStatus::interrupted:
       return fmt::format(
-          "regodem: interrupted by {} {} at t = {} after {}; outputs so far in {}; {}", signal_name(stop_signal()),
-          stage_phrase(recorder.current_stage()), format_simulated_time(outcome.simulated_time_s),
+          "regodem: interrupted by {} {} at t = {}{} after {}; outputs so far in {}; {}", signal_name(stop_signal()),
+          stage_phrase(recorder.current_stage()), format_simulated_time(outcome.simulated_time_s), real,
           format_wall_duration(outcome.wall_s), where,
           checkpoints.latest() && recorder.checkpoint_failure().empty()
               ? fmt::format("checkpoint {}; continue with: regodem resume {}", checkpoints.latest()->string(),
@@ -230,9 +231,9 @@ std::string final_line(const Ending& ending, const RunRecorder& recorder, const 
     case RunStatus::failed:
       break;
   }
-  return fmt::format("regodem: failed {} at t = {} after {}; outputs so far in {}",
+  return fmt::format("regodem: failed {} at t = {}{} after {}; outputs so far in {}",
                      stage_phrase(recorder.current_stage()),
-                     format_simulated_time(outcome.simulated_time_s),
+                     format_simulated_time(outcome.simulated_time_s), real,
                      format_wall_duration(outcome.wall_s), where);
 }
 
@@ -316,6 +317,8 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
   }
 
   ProgressDisplay display(stderr, ::isatty(::fileno(stderr)) == 1, spec->output.progress_interval_s);
+  const double time_scale_factor = prepared->simulation().settings().heat.time_scale_factor;
+  display.set_time_scale(TimeScale{time_scale_factor});
   std::vector<std::string> stage_names;
   for (const StageSpec& stage : spec->stages) stage_names.push_back(stage.name);
   RunRecorder recorder(directory / time_series_file, display, stage_names);
@@ -362,7 +365,7 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
   }
   write_summary_json(directory / summary_file,
                      make_summary(ending, *spec, options, *prepared, recorder, started_at));
-  fmt::print("{}\n", final_line(ending, recorder, checkpoints, directory));
+  fmt::print("{}\n", final_line(ending, recorder, checkpoints, directory, time_scale_factor));
   std::fflush(stdout);
   return ending.exit_code;
 }

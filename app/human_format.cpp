@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "sim/time_scale.hpp"
+
 namespace regodem::app {
 
 std::string format_wall_duration(double seconds) {
@@ -18,6 +20,18 @@ std::string format_wall_duration(double seconds) {
 std::string format_simulated_time(double seconds) {
   if (!std::isfinite(seconds)) return fmt::format("{} s", seconds);
   return fmt::format("{:.4g} s", seconds);
+}
+
+std::string real_time_note(double time_scale_factor, std::initializer_list<double> simulated_s,
+                           const char* separator) {
+  const TimeScale scale{time_scale_factor};
+  if (!scale.compressed() || simulated_s.size() == 0) return "";
+  std::string times;
+  for (const double t : simulated_s) {
+    if (!times.empty()) times += separator;
+    times += format_simulated_time(scale.real_time_s(t));
+  }
+  return fmt::format(" ({} real, S = {:.4g})", times, time_scale_factor);
 }
 
 std::string format_compact(double value) {

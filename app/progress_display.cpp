@@ -34,11 +34,21 @@ std::string stage_goal(const StageInfo& stage) {
   return "";
 }
 
-std::string describe_snapshot(const ProgressSnapshot& snapshot) {
+/// The stage's start and planned end in real time, where S != 1.
+std::string stage_real_times(const StageInfo& stage, const TimeScale& scale) {
+  return std::isfinite(stage.planned_end_time_s)
+             ? real_time_note(scale.factor, {stage.start_time_s, stage.planned_end_time_s}, " to ")
+             : real_time_note(scale.factor, {stage.start_time_s});
+}
+
+std::string describe_snapshot(const ProgressSnapshot& snapshot, const TimeScale& scale) {
   const StageInfo& stage = snapshot.stage;
   std::string line = fmt::format("{}  t = {}", stage_label(stage), format_simulated_time(snapshot.time_s));
   if (!stage.ends_when_settled && std::isfinite(stage.planned_end_time_s)) {
-    line += fmt::format(" / {}", format_simulated_time(stage.planned_end_time_s));
+    line += fmt::format(" / {}{}", format_simulated_time(stage.planned_end_time_s),
+                        real_time_note(scale.factor, {snapshot.time_s, stage.planned_end_time_s}));
+  } else {
+    line += real_time_note(scale.factor, {snapshot.time_s});
   }
   line += fmt::format("  {} steps/s  {} particles", format_compact(snapshot.steps_per_s),
                       snapshot.particles);
@@ -60,9 +70,9 @@ ProgressDisplay::~ProgressDisplay() { finish(); }
 
 void ProgressDisplay::stage_started(const StageInfo& stage) {
   const std::string goal = stage_goal(stage);
-  print_permanent_line(fmt::format("{} started at t = {}{}{}", stage_label(stage),
+  print_permanent_line(fmt::format("{} started at t = {}{}{}{}", stage_label(stage),
                                    format_simulated_time(stage.start_time_s),
-                                   goal.empty() ? "" : ", runs ", goal));
+                                   goal.empty() ? "" : ", runs ", goal, stage_real_times(stage, scale_)));
   // Show the first snapshot of the stage at once, then at the interval.
   last_shown_wall_s_ = -1.0;
 }
@@ -71,7 +81,7 @@ void ProgressDisplay::update(const ProgressSnapshot& snapshot) {
   const double interval_s = redraw_in_place_ ? terminal_redraw_interval_s : plain_interval_s_;
   if (last_shown_wall_s_ >= 0.0 && snapshot.wall_s - last_shown_wall_s_ < interval_s) return;
   last_shown_wall_s_ = snapshot.wall_s;
-  const std::string line = describe_snapshot(snapshot);
+  const std::string line = describe_snapshot(snapshot, scale_);
   if (redraw_in_place_) {
     redraw(line);
   } else {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sim/run_observer.hpp"
+#include "sim/time_scale.hpp"
 
 namespace regodem::app {
 
@@ -17,6 +18,10 @@ class ProgressDisplay {
   ProgressDisplay(const ProgressDisplay&) = delete;
   ProgressDisplay& operator=(const ProgressDisplay&) = delete;
   ~ProgressDisplay();
+
+  /// heat.time_scale_factor S: with S != 1 the times shown also give their real-time
+  /// equivalent (x S), "t = 2.067 s (165.4 s real, S = 80)".
+  void set_time_scale(TimeScale scale) { scale_ = scale; }
 
   void stage_started(const StageInfo& stage);
   void update(const ProgressSnapshot& snapshot);
@@ -32,6 +37,7 @@ class ProgressDisplay {
   int terminal_width() const;
 
   std::FILE* stream_;
+  TimeScale scale_;
   bool redraw_in_place_;
   double plain_interval_s_;
   double last_shown_wall_s_ = -1.0;

@@ -10,7 +10,8 @@ header in the run's folder and in regions/ (region and band series), each profil
 profiles/ as one line per instant, and writes figures of
 FIG_WIDTH x FIG_HEIGHT pixels into DIR (default: the first OUTDIR's plots/ folder).
 Several runs are overlaid, one colour per run, labelled by --labels or their folder
-names. A figure whose columns no run has is left out, and the message says so.
+names. A run with heat.time_scale_factor S != 1 is drawn against its real_time column
+(simulated time x S), and the axis says so; with S = 1 against time. A figure whose columns no run has is left out, and the message says so.
 --section draws the particle temperature on a plane through an axis from each run's
 latest snapshot (particles.pvd), walls cut by the plane as lines, beside the temperature
 of every particle along that axis. Prints the path of each figure, then (on stderr) the
@@ -157,6 +158,30 @@ class Series:
         text = quantity or name.replace("_", " ")
         return f"{text} [{unit}]" if unit and unit != "-" else text
 
+    def time_scale(self):
+        """heat.time_scale_factor S of the run: real_time / time (1 without a real_time column)."""
+        if not (self.has("time") and self.has("real_time")) or not len(self.data):
+            return 1.0
+        time, real = self.column("time"), self.column("real_time")
+        nonzero = np.isfinite(time) & np.isfinite(real) & (time != 0)
+        return float(np.median(real[nonzero] / time[nonzero])) if np.any(nonzero) else 1.0
+
+
+def compressed(scale):
+    return abs(scale - 1.0) > 1e-9
+
+
+def time_axis(series):
+    """The time column the figures of these series use, and its label. A run with
+    heat.time_scale_factor S != 1 (real_time = time x S) is drawn against real time;
+    runs with S = 1, or files without a real_time column, against time as before."""
+    present = [s for s in series if s is not None and s.has("time")]
+    scales = sorted({round(s.time_scale(), 9) for s in present if compressed(s.time_scale())})
+    if scales and all(s.has("real_time") for s in present):
+        factor = f"{scales[0]:.4g}" if len(scales) == 1 else "S"
+        return "real_time", f"real time [s] (simulated time × {factor})"
+    return "time", "time [s]"
+
 
 class Run:
     def __init__(self, directory, label):
@@ -214,11 +239,11 @@ def colours(n):
     return [cycle[i % len(cycle)] for i in range(n)]
 
 
-def mark_stages(ax, series):
+def mark_stages(ax, series, time_name="time"):
     """Light vertical lines where a stage begins."""
     if not series.has("stage") or len(series.data) < 2:
         return
-    stage, time = series.column("stage"), series.column("time")
+    stage, time = series.column("stage"), series.column(time_name)
     for k in np.nonzero(np.diff(stage))[0]:
         ax.axvline(time[k + 1], color="0.85", linewidth=0.8, zorder=0)
 
@@ -232,15 +257,16 @@ def plot_temperature(runs, out_dir, written):
     if not have:
         return "particle temperature (no run has heat on)"
     fig, (ax,) = new_figure()
+    time_name, time_label = time_axis([r.series for r in have])
     for run, colour in zip(have, colours(len(runs))):
         s = run.series
-        t = s.column("time")
+        t = s.column(time_name)
         ax.plot(t, s.column("temperature_mean"), color=colour, label=f"{run.label}: mean")
         ax.fill_between(t, s.column("temperature_min"), s.column("temperature_max"), color=colour, alpha=0.15,
                         label=f"{run.label}: min to max")
-        mark_stages(ax, s)
+        mark_stages(ax, s, time_name)
     s = have[0].series
-    ax.set_xlabel(s.label("time"))
+    ax.set_xlabel(time_label)
     ax.set_ylabel(s.label("temperature_mean", "particle temperature"))
     ax.set_title("Particle temperature")
     ax.legend(fontsize="small")
@@ -253,13 +279,14 @@ def plot_wall_temperatures(runs, out_dir, written):
     fig, (ax,) = new_figure()
     any_line = False
     styles = ["-", "--", ":", "-."]
+    time_name, time_label = time_axis([r.series for r in runs])
     for r, (run, colour) in enumerate(zip(runs, colours(len(runs)))):
         s = run.series
         if s is None or not s.has("time") or not len(s.data):
             continue
         walls = [n for n in s.names if n.endswith(".temperature")]
         for k, name in enumerate(walls):
-            ax.plot(s.column("time"), s.column(name), color=colour if len(runs) > 1 else None,
+            ax.plot(s.column(time_name), s.column(name), color=colour if len(runs) > 1 else None,
                     linestyle=styles[k % len(styles)] if len(runs) > 1 else "-",
                     label=f"{run.label}: {name[: -len('.temperature')]}" if len(runs) > 1 else name[: -len(".temperature")])
             any_line = True
@@ -268,7 +295,7 @@ def plot_wall_temperatures(runs, out_dir, written):
     if not any_line:
         plt.close(fig)
         return "wall temperatures (no fixed or lumped wall)"
-    ax.set_xlabel("time [s]")
+    ax.set_xlabel(time_label)
     ax.set_ylabel(unit_source.label(unit_name, "wall temperature"))
     ax.set_title("Wall temperatures")
     ax.legend(fontsize="x-small", ncol=2)
@@ -282,22 +309,23 @@ def plot_energy_balance(runs, out_dir, written):
     if not have:
         return "energy balance (no run has heat on)"
     fig, (top, bottom) = new_figure(2)
+    time_name, time_label = time_axis([r.series for r in have])
     for run, colour in zip(have, colours(len(runs))):
         s = run.series
-        t = s.column("time")
+        t = s.column(time_name)
         energy = s.column("thermal_energy")
         top.plot(t, energy - energy[0], color=colour, label=f"{run.label}: change of thermal energy")
         top.plot(t, s.column("boundary_heat_in") + s.column("friction_heat"), color=colour, linestyle="--",
                  label=f"{run.label}: heat in (fixed walls + friction)")
         bottom.plot(t, s.column("energy_imbalance"), color=colour, label=run.label)
-        mark_stages(top, s)
-        mark_stages(bottom, s)
+        mark_stages(top, s, time_name)
+        mark_stages(bottom, s, time_name)
     s = have[0].series
     top.set_ylabel(s.label("thermal_energy", "energy"))
     top.set_title("Energy balance")
     top.legend(fontsize="x-small")
     bottom.set_ylabel("relative imbalance [-]")
-    bottom.set_xlabel(s.label("time"))
+    bottom.set_xlabel(time_label)
     for ax in (top, bottom):
         ax.grid(alpha=0.3)
     fig.tight_layout()
@@ -307,11 +335,12 @@ def plot_energy_balance(runs, out_dir, written):
 def plot_wall_forces(runs, out_dir, written):
     fig, (top, bottom) = new_figure(2)
     any_line = False
+    time_name, time_label = time_axis([r.series for r in runs])
     for run, colour in zip(runs, colours(len(runs))):
         s = run.series
         if s is None or not s.has("time") or not len(s.data):
             continue
-        t = s.column("time")
+        t = s.column(time_name)
         walls = [n[: -len(".force_x")] for n in s.names if n.endswith(".force_x")]
         walls = [w for w in walls if all(s.has(f"{w}.{q}_{a}") for q in ("force", "torque") for a in "xyz")]
         for wall in walls:
@@ -330,7 +359,7 @@ def plot_wall_forces(runs, out_dir, written):
         return "wall forces (no particle touched a wall)"
     top.set_ylabel(unit_source.label(f"{unit_wall}.force_x", "force on the wall"))
     bottom.set_ylabel(unit_source.label(f"{unit_wall}.torque_x", "torque on the wall"))
-    bottom.set_xlabel("time [s]")
+    bottom.set_xlabel(time_label)
     top.set_title("Wall forces and torques (magnitude)")
     top.legend(fontsize="x-small", ncol=2)
     for ax in (top, bottom):
@@ -344,19 +373,20 @@ def plot_mechanics(runs, out_dir, written):
     if not have:
         return "kinetic energy (no time series)"
     fig, (top, bottom) = new_figure(2)
+    time_name, time_label = time_axis([r.series for r in have])
     for run, colour in zip(have, colours(len(runs))):
         s = run.series
-        t = s.column("time")
+        t = s.column(time_name)
         kinetic = s.column("kinetic_energy")
         top.plot(t, np.where(kinetic > 0, kinetic, np.nan), color=colour, label=run.label)
         bottom.plot(t, s.column("coordination_number"), color=colour, label=run.label)
-        mark_stages(top, s)
+        mark_stages(top, s, time_name)
     s = have[0].series
     if np.any(np.concatenate([r.series.column("kinetic_energy") for r in have]) > 0):
         top.set_yscale("log")
     top.set_ylabel(s.label("kinetic_energy", "kinetic energy"))
     bottom.set_ylabel(s.label("coordination_number", "coordination number"))
-    bottom.set_xlabel(s.label("time"))
+    bottom.set_xlabel(time_label)
     top.set_title("Kinetic energy and coordination number")
     top.legend(fontsize="small")
     for ax in (top, bottom):
@@ -366,23 +396,30 @@ def plot_mechanics(runs, out_dir, written):
 
 
 def plot_other_csvs(runs, out_dir, written):
-    """Profiles and region series: every further CSV, its columns against its first."""
+    """Profiles and region series: every further CSV, its columns against its first (against
+    real time where the first is time and the run's time was compressed). real_time, a copy
+    of time x S, is not drawn as a line of its own."""
     names = sorted({name for run in runs for name in run.others})
     for name in names:
         fig, (ax,) = new_figure()
         any_line = False
+        time_name, time_label = time_axis([run.others.get(name) for run in runs])
         for run, colour in zip(runs, colours(len(runs))):
             s = run.others.get(name)
             if s is None or len(s.names) < 2 or not len(s.data):
                 continue
             x = s.names[0]
-            for k, y in enumerate(s.names[1:]):
+            ys = [y for y in s.names[1:] if y != "real_time"]
+            if x == "time":
+                x = time_name
+                ys = [y for y in ys if y != "time"]
+            for k, y in enumerate(ys):
                 ax.plot(s.column(x), s.column(y), color=colour if len(runs) > 1 else None,
                         linestyle=["-", "--", ":", "-."][k % 4] if len(runs) > 1 else "-",
                         label=f"{run.label}: {y}" if len(runs) > 1 else y)
                 any_line = True
-            ax.set_xlabel(s.label(x))
-            units = {s.units[y] for y in s.names[1:]}
+            ax.set_xlabel(time_label if x == time_name else s.label(x))
+            units = {s.units[y] for y in ys}
             ax.set_ylabel(f"value [{units.pop()}]" if len(units) == 1 else "value (see legend for units)")
         if not any_line:
             plt.close(fig)
@@ -408,11 +445,11 @@ def plot_profiles(runs, out_dir, written):
                 continue
             x = "radius" if s.has("radius") else "distance"
             y = "temperature_mean" if s.has("temperature_mean") else "count"
-            key = "depth" if s.has("depth") else "time"
+            key = "depth" if s.has("depth") else time_axis([s])[0]
             instants = list(dict.fromkeys(s.column("time")))
             for k, t in enumerate(instants):
                 rows = s.column("time") == t
-                tag = f"{key} {s.column(key)[rows][0]:.4g} {s.units[key]}"
+                tag = f"{key.replace('_', ' ')} {s.column(key)[rows][0]:.4g} {s.units[key]}"
                 ax.plot(s.column(x)[rows], s.column(y)[rows], marker=".",
                         color=colour if len(runs) > 1 else None,
                         linestyle=styles[k % len(styles)] if len(runs) > 1 else "-",
@@ -791,6 +828,10 @@ def main(argv):
     sys.stdout.flush()  # the paths, then the lines on stderr, in that order on a terminal
     if missing:
         print("not drawn: " + "; ".join(missing), file=sys.stderr)
+    scales = sorted({round(r.series.time_scale(), 9) for r in runs if r.series is not None} - {1.0})
+    if scales:
+        print("regodem plot: note: time axes in real time: the simulated time x heat.time_scale_factor S = "
+              + ", ".join(f"{x:.4g}" for x in scales), file=sys.stderr)
     snapshots = [os.path.join(r.directory, "particles.pvd") for r in runs
                  if os.path.isfile(os.path.join(r.directory, "particles.pvd"))]
     print(f"regodem plot: {len(written)} figure{'' if len(written) == 1 else 's'} in "

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "io/atomic_file.hpp"
+#include "sim/time_scale.hpp"
 
 namespace regodem {
 namespace {
@@ -14,7 +15,12 @@ nlohmann::ordered_json number_or_null(std::optional<double> value) {
   return *value;
 }
 
-nlohmann::ordered_json stage_to_json(const StageSummary& stage) {
+/// A simulated time in real seconds (x S); empty stays empty.
+std::optional<double> real_time_s(const TimeScale& scale, std::optional<double> simulated_s) {
+  return simulated_s ? std::optional<double>(scale.real_time_s(*simulated_s)) : std::nullopt;
+}
+
+nlohmann::ordered_json stage_to_json(const StageSummary& stage, const TimeScale& scale) {
   nlohmann::ordered_json json;
   json["name"] = stage.name;
   json["result"] = stage.result ? std::string(to_string(*stage.result)) : std::string("not started");
@@ -22,9 +28,13 @@ nlohmann::ordered_json stage_to_json(const StageSummary& stage) {
   json["end_time_s"] = number_or_null(stage.end_time_s);
   // How long it ran in simulated time: a stage that ended on a measurement gives the
   // time another run must heat for (the matching cell's W0 time).
-  json["duration_s"] = number_or_null(stage.end_time_s && stage.start_time_s
-                                          ? std::optional<double>(*stage.end_time_s - *stage.start_time_s)
-                                          : std::nullopt);
+  const std::optional<double> duration_s =
+      stage.end_time_s && stage.start_time_s ? std::optional<double>(*stage.end_time_s - *stage.start_time_s)
+                                             : std::nullopt;
+  json["duration_s"] = number_or_null(duration_s);
+  json["start_time_real_s"] = number_or_null(real_time_s(scale, stage.start_time_s));
+  json["end_time_real_s"] = number_or_null(real_time_s(scale, stage.end_time_s));
+  json["duration_real_s"] = number_or_null(real_time_s(scale, duration_s));
   json["wall_time_s"] = number_or_null(stage.wall_time_s);
   json["message"] = stage.message;
   return json;
@@ -53,7 +63,7 @@ nlohmann::ordered_json measurement_to_json(const MeasurementFinal& m) {
     const bool profile = m.table.kind == "profile";
     for (std::size_t c = 0; c < m.table.columns.size(); ++c) {
       const SeriesColumn& column = m.table.columns[c];
-      if (!profile || column.name == "time" || column.name == "depth") {
+      if (!profile || column.name == "time" || column.name == "real_time" || column.name == "depth") {
         last[key_with_unit(column)] = value_to_json(column, m.last_rows.front()[c]);
         continue;
       }
@@ -68,6 +78,7 @@ nlohmann::ordered_json measurement_to_json(const MeasurementFinal& m) {
 
 nlohmann::ordered_json measurements_to_json(const RunSummary& summary) {
   nlohmann::ordered_json json = nlohmann::ordered_json::object();
+  const TimeScale scale{summary.heat.time_scale_factor};
   if (const auto& h = summary.thermal_history)
     json["thermal_history"] = {{"threshold_K", number_or_null(h->threshold_K)},
                                {"particles", h->particles},
@@ -75,7 +86,11 @@ nlohmann::ordered_json measurements_to_json(const RunSummary& summary) {
                                {"crossed_fraction", number_or_null(h->crossed_fraction)},
                                {"peak_temperature_max_K", number_or_null(h->peak_temperature_max_K)},
                                {"time_above_threshold_mean_s", number_or_null(h->time_above_threshold_mean_s)},
-                               {"time_above_threshold_max_s", number_or_null(h->time_above_threshold_max_s)}};
+                               {"time_above_threshold_max_s", number_or_null(h->time_above_threshold_max_s)},
+                               {"time_above_threshold_mean_real_s",
+                                number_or_null(scale.real_time_s(h->time_above_threshold_mean_s))},
+                               {"time_above_threshold_max_real_s",
+                                number_or_null(scale.real_time_s(h->time_above_threshold_max_s))}};
   for (const char* kind : {"region", "band", "profile"}) {
     nlohmann::ordered_json group = nlohmann::ordered_json::object();
     for (const MeasurementFinal& m : summary.measurements)
@@ -106,12 +121,14 @@ std::string_view to_string(StageResult result) {
 }
 
 nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
+  const TimeScale scale{summary.heat.time_scale_factor};
   nlohmann::ordered_json json;
   json["outcome"] = std::string(to_string(summary.status));
   json["message"] = summary.message;
   json["particles"] = summary.particles;
   json["steps"] = summary.steps;
   json["simulated_time_s"] = number_or_null(summary.simulated_time_s);
+  json["real_time_s"] = number_or_null(scale.real_time_s(summary.simulated_time_s));  // x S
   json["wall_time_s"] = number_or_null(summary.wall_time_s);
   json["particle_steps_per_s"] = number_or_null(summary.particle_steps_per_s);
   json["time_step_s"] = number_or_null(summary.time_step_s);
@@ -137,7 +154,7 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
                      {"broken_in_shear", summary.bonds->broken_in_shear}};
   if (summary.thermal_history || !summary.measurements.empty()) json["measurements"] = measurements_to_json(summary);
   json["stages"] = nlohmann::ordered_json::array();
-  for (const StageSummary& stage : summary.stages) json["stages"].push_back(stage_to_json(stage));
+  for (const StageSummary& stage : summary.stages) json["stages"].push_back(stage_to_json(stage, scale));
   json["notices"] = summary.notices;
   return json;
 }

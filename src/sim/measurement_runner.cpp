@@ -9,6 +9,7 @@
 
 #include "measure/thermal_history.hpp"
 #include "sim/simulation.hpp"
+#include "sim/time_scale.hpp"
 
 namespace regodem {
 namespace {
@@ -43,19 +44,19 @@ MeasurementTable measurement_table(const Measurement& m, const Simulation& sim) 
     case MeasurementKind::region:
       // Against depth first where there is one: the paper's Fig. 14 plots the chip zone so.
       if (depth) c.push_back({"depth", "m"});
-      c.push_back({"time", "s"});
+      c.insert(c.end(), {{"time", "s"}, {"real_time", "s"}});
       if (heat) c.insert(c.end(), temperatures.begin(), temperatures.end());
       c.push_back({"count", "-"});
       if (threshold_of(sim)) c.push_back({"crossed_threshold_fraction", "-"});
       break;
     case MeasurementKind::band:
       if (depth) c.push_back({"depth", "m"});
-      c.insert(c.end(), {{"time", "s"}, {"T_in", "K"}, {"T_out", "K"}, {"T_d", "K"}, {"count_in", "-"},
+      c.insert(c.end(), {{"time", "s"}, {"real_time", "s"}, {"T_in", "K"}, {"T_out", "K"}, {"T_d", "K"}, {"count_in", "-"},
                          {"count_out", "-"}});
       break;
     case MeasurementKind::profile:
       // Long form, one row per bin and instant: rows of one instant share their time.
-      c.push_back({"time", "s"});
+      c.insert(c.end(), {{"time", "s"}, {"real_time", "s"}});
       if (depth) c.push_back({"depth", "m"});
       c.push_back({m.profile.coordinate == ProfileCoordinate::radius ? "radius" : "distance", "m"});
       if (heat) c.insert(c.end(), temperatures.begin(), temperatures.end());
@@ -85,11 +86,12 @@ bool target_reached(const MeasurementPlan& plan, const MeasurementTarget& target
 std::vector<std::vector<double>> measurement_rows(const Measurement& m, const Simulation& sim) {
   const bool heat = sim.heat_enabled();
   const Vec3 offset = offset_of(sim, m);
-  std::vector<double> lead;  // depth and time, in the table's order
+  std::vector<double> lead;  // depth, time and real time, in the table's order
   const double depth =
       m.depth_body >= 0 ? sim.walls.bodies[static_cast<std::size_t>(m.depth_body)].depth_m() : 0.0;
   if (m.depth_body >= 0 && m.kind != MeasurementKind::profile) lead.push_back(depth);
   lead.push_back(sim.time_s());
+  lead.push_back(TimeScale{sim.settings().heat.time_scale_factor}.real_time_s(sim.time_s()));
   if (m.depth_body >= 0 && m.kind == MeasurementKind::profile) lead.push_back(depth);
 
   std::vector<std::vector<double>> rows;
@@ -129,14 +131,18 @@ std::vector<std::vector<double>> measurement_rows(const Measurement& m, const Si
 
 std::vector<SeriesColumn> thermal_history_columns(const Simulation& sim) {
   if (!threshold_of(sim)) return {};
-  return {{"peak_temperature_max", "K"}, {"crossed_threshold_fraction", "-"}, {"time_above_threshold_mean", "s"}};
+  return {{"peak_temperature_max", "K"},
+          {"crossed_threshold_fraction", "-"},
+          {"time_above_threshold_mean", "s"},
+          {"time_above_threshold_mean_real", "s"}};  // the same in real time (x S)
 }
 
 std::vector<double> thermal_history_row(const Simulation& sim) {
   const std::optional<double> threshold = threshold_of(sim);
   if (!threshold) return {};
   const ThermalHistorySummary s = thermal_history_summary(sim.particles, *threshold);
-  return {s.peak_temperature_max_K, s.crossed_fraction(), s.time_above_threshold_mean_s};
+  return {s.peak_temperature_max_K, s.crossed_fraction(), s.time_above_threshold_mean_s,
+          TimeScale{sim.settings().heat.time_scale_factor}.real_time_s(s.time_above_threshold_mean_s)};
 }
 
 MeasurementRunner::MeasurementRunner(const MeasurementPlan& plan) : plan_(plan) {

@@ -12,6 +12,7 @@
 #include "sim/measurement_runner.hpp"
 #include "sim/recent_rate.hpp"
 #include "sim/static_heat_stepper.hpp"
+#include "sim/time_scale.hpp"
 
 namespace regodem {
 namespace {
@@ -108,8 +109,11 @@ bool reached_depth(const Simulation& sim, const Stage& stage) {
 }  // namespace
 
 std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
+  // Simulated time, then its real-time equivalent (x S, sim/time_scale.hpp): the same
+  // column with S = 1, so that every file has one shape.
   std::vector<SeriesColumn> columns = {
       {"time", "s"},
+      {"real_time", "s"},
       {"step", "-"},
       {"stage", "-"},
       {"particles", "-"},
@@ -147,6 +151,7 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
     if (conducting_wall(sim.wall_thermal[b])) {
       columns.push_back({sim.walls.bodies[b].name + ".temperature", "K"});
       columns.push_back({sim.walls.bodies[b].name + ".heat_flow", "W"});  // into the particles
+      columns.push_back({sim.walls.bodies[b].name + ".heat_flow_real", "W"});  // the same in real time (/ S)
       columns.push_back({sim.walls.bodies[b].name + ".heat_to_particles", "J"});  // cumulative
     }
   return columns;
@@ -155,8 +160,10 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
 std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_index) {
   const auto& stats = sim.contact_statistics();
   const double n = static_cast<double>(sim.particles.size());
+  const TimeScale scale{sim.settings().heat.time_scale_factor};
   std::vector<double> row = {
       sim.time_s(),
+      scale.real_time_s(sim.time_s()),
       static_cast<double>(sim.step_count()),
       static_cast<double>(stage_index),
       n,
@@ -200,7 +207,8 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
   row.insert(row.end(), history.begin(), history.end());
   for (const ThermalWall& w : sim.wall_thermal)
     if (conducting_wall(w))
-      row.insert(row.end(), {w.temperature_K, w.heat_flow_to_particles_W, w.heat_to_particles_J});
+      row.insert(row.end(), {w.temperature_K, w.heat_flow_to_particles_W, scale.real_rate(w.heat_flow_to_particles_W),
+                             w.heat_to_particles_J});
   return row;
 }
 

@@ -21,7 +21,8 @@ namespace {
 /// Records the kinetic energy at the end of each stage.
 class StageEnds : public RunObserver {
  public:
-  void sample(const std::vector<double>& row) override { last_kinetic_energy = row[4]; }
+  // time, real_time, step, stage, particles, kinetic_energy, ...
+  void sample(const std::vector<double>& row) override { last_kinetic_energy = row[5]; }
   void stage_finished(const StageInfo&, StageResult, const std::string&) override {
     kinetic_energy_at_end.push_back(last_kinetic_energy);
   }

@@ -268,6 +268,7 @@ TEST_F(CliTest, RunWritesSummaryTimeSeriesAndReproductionFiles) {
   ASSERT_GE(lines.size(), 3u);  // header and samples at 0.005 s intervals
   const std::vector<std::string> header = split_csv_line(lines[0]);
   EXPECT_EQ(header[0], "time [s]");
+  EXPECT_EQ(header[1], "real_time [s]");  // S = 1: the same as time, written to keep one shape
   for (const std::string& column : header) {
     EXPECT_TRUE(column.size() > 3 && column.back() == ']' && contains(column, " [")) << column;
   }
@@ -275,6 +276,9 @@ TEST_F(CliTest, RunWritesSummaryTimeSeriesAndReproductionFiles) {
     EXPECT_EQ(split_csv_line(lines[i]).size(), header.size()) << lines[i];
   }
   EXPECT_EQ(std::stod(split_csv_line(lines.back())[0]), summary.at("simulated_time_s").get<double>());
+  for (std::size_t i = 1; i < lines.size(); ++i)
+    EXPECT_EQ(split_csv_line(lines[i])[1], split_csv_line(lines[i])[0]) << lines[i];
+  EXPECT_EQ(summary.at("real_time_s"), summary.at("simulated_time_s"));
 
   EXPECT_EQ(read_file(output / "scenario.yaml"), read_file(scenario));
   EXPECT_EQ(read_file(output / "overrides.txt"), "");
@@ -633,7 +637,7 @@ TEST_F(CliTest, PaperDrillingChainRunsEndToEnd) {
     // reaches the surface, holding cuttings warmed by the drill at the end.
     const std::vector<std::string> chip = read_lines(output / "regions" / "chip_zone.csv");
     ASSERT_GE(chip.size(), 1u + 7u) << model;
-    EXPECT_EQ(split_csv_line(chip[1]).at(5), "0") << model;
+    EXPECT_EQ(split_csv_line(chip[1]).at(6), "0") << model;  // depth, time, real_time, 3 temperatures, count
     const nlohmann::json& chip_final = summary["measurements"]["regions"]["chip_zone"]["final"];
     EXPECT_GT(chip_final["count"].get<int>(), 0) << model;
     // Warmed at all (round-off is 1e-12 K): at the real moduli the drill's contacts conduct

@@ -113,6 +113,33 @@ TEST_F(SummaryJsonWriterTest, EveryFieldReadsBack) {
             nlohmann::json::array({"insertion 'coarse': placed 80 of 100 particles; the region is full"}));
 }
 
+// heat.time_scale_factor S: each simulated time has its real-time twin (x S) beside it;
+// with S = 1 the twins equal the simulated times.
+TEST_F(SummaryJsonWriterTest, CompressedTimesHaveRealTimeTwins) {
+  RunSummary summary = example();
+  summary.heat.enabled = true;
+  summary.heat.time_scale_factor = 80.0;
+  summary.thermal_history = ThermalHistoryFinal{203.15, 10, 4, 0.4, 250.0, 0.03, 0.1};
+  const nlohmann::json json = write_and_parse(summary);
+  EXPECT_EQ(json.at("heat").at("time_scale_factor").get<double>(), 80.0);
+  EXPECT_EQ(json.at("simulated_time_s").get<double>(), 0.25);
+  EXPECT_DOUBLE_EQ(json.at("real_time_s").get<double>(), 0.25 * 80.0);
+  const nlohmann::json& stages = json.at("stages");
+  EXPECT_DOUBLE_EQ(stages[1].at("start_time_real_s").get<double>(), 0.1 * 80.0);
+  EXPECT_DOUBLE_EQ(stages[1].at("end_time_real_s").get<double>(), 0.25 * 80.0);
+  EXPECT_DOUBLE_EQ(stages[1].at("duration_real_s").get<double>(), (0.25 - 0.1) * 80.0);
+  EXPECT_TRUE(stages[2].at("duration_real_s").is_null());  // never started
+  const nlohmann::json& history = json.at("measurements").at("thermal_history");
+  EXPECT_EQ(history.at("time_above_threshold_mean_s").get<double>(), 0.03);
+  EXPECT_DOUBLE_EQ(history.at("time_above_threshold_mean_real_s").get<double>(), 0.03 * 80.0);
+  EXPECT_DOUBLE_EQ(history.at("time_above_threshold_max_real_s").get<double>(), 0.1 * 80.0);
+
+  summary.heat.time_scale_factor = 1.0;
+  const nlohmann::json real = write_and_parse(summary);
+  EXPECT_EQ(real.at("real_time_s"), real.at("simulated_time_s"));
+  EXPECT_EQ(real.at("stages")[0].at("duration_real_s"), real.at("stages")[0].at("duration_s"));
+}
+
 TEST_F(SummaryJsonWriterTest, OutcomeNamesAndStageResultNames) {
   EXPECT_EQ(to_string(RunStatus::completed), "completed");
   EXPECT_EQ(to_string(RunStatus::failed), "failed");

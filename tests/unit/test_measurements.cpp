@@ -263,21 +263,23 @@ TEST(MeasurementRunner, RegionMovesWithATranslatingWall) {
   m.follow_body = static_cast<int>(drill);
   m.depth_body = static_cast<int>(drill);
   const MeasurementTable table = measurement_table(m, sim);
-  ASSERT_EQ(table.columns.size(), 3u);  // heat off: depth, time, count
+  ASSERT_EQ(table.columns.size(), 4u);  // heat off: depth, time, real_time, count
   EXPECT_EQ(table.columns[0].name, "depth");
-  EXPECT_EQ(table.columns[2].name, "count");
-  EXPECT_EQ(measurement_rows(m, sim).at(0).at(2), 4.0);
+  EXPECT_EQ(table.columns[2].name, "real_time");
+  EXPECT_EQ(table.columns[3].name, "count");
+  EXPECT_EQ(measurement_rows(m, sim).at(0).at(3), 4.0);
   for (int s = 0; s < 500; ++s) sim.step();  // 0.5 s: 5 mm down, the region spans 1..5 mm
   const std::vector<std::vector<double>> rows = measurement_rows(m, sim);
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_NEAR(rows[0][0], 0.005, 1e-12);
   EXPECT_NEAR(rows[0][1], 0.5, 1e-12);
-  EXPECT_EQ(rows[0][2], 4.0);  // z = 1.5, 2.5, 3.5, 4.5 mm
+  EXPECT_EQ(rows[0][2], rows[0][1]);  // S = 1: real time is the simulated time
+  EXPECT_EQ(rows[0][3], 4.0);  // z = 1.5, 2.5, 3.5, 4.5 mm
   m.follow_body = -1;
-  EXPECT_EQ(measurement_rows(m, sim).at(0).at(2), 4.0);  // fixed: still the particles at 6.5..9.5 mm
+  EXPECT_EQ(measurement_rows(m, sim).at(0).at(3), 4.0);  // fixed: still the particles at 6.5..9.5 mm
   m.region.base_m = {0, 0, 0.0};
   m.region.length_m = 0.0021;
-  EXPECT_EQ(measurement_rows(m, sim).at(0).at(2), 2.0);
+  EXPECT_EQ(measurement_rows(m, sim).at(0).at(3), 2.0);
 }
 
 TEST(MeasurementClock, ListedTimesAreTakenOnceEachOnTheFirstStepPastThem) {

@@ -359,6 +359,36 @@ TEST_F(PlotCommand, ReadsColumnsWhoseNamesHoldBrackets) {
   EXPECT_TRUE(png_size(dir / "plots" / "wall_temperatures.png").valid) << r.output;
 }
 
+// Issue 22: a run with heat.time_scale_factor S != 1 is drawn against real time (its
+// real_time column, time x S) and the command says so; a run with S = 1 against time.
+TEST_F(PlotCommand, ACompressedRunIsDrawnAgainstRealTime) {
+  const fs::path dir = root_ / "compressed";
+  fs::create_directories(dir / "regions");
+  {
+    std::ofstream csv(dir / "time_series.csv");
+    csv << "time [s],real_time [s],stage [-],kinetic_energy [J],coordination_number [-],temperature_mean [K],"
+           "temperature_min [K],temperature_max [K]\n"
+           "0,0,0,1,0,100,90,110\n0.5,5,0,0.5,2,120,100,140\n1,10,1,0.1,3,150,120,180\n";
+    std::ofstream region(dir / "regions" / "zone.csv");
+    region << "time [s],real_time [s],temperature_mean [K],count [-]\n0,0,100,3\n1,10,150,3\n";
+  }
+  const Result r = run("plot '" + dir.string() + "' --out '" + (dir / "plots").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("time axes in real time: the simulated time x heat.time_scale_factor S = 10"),
+            std::string::npos)
+      << r.output;
+  for (const char* name : {"temperature.png", "mechanics.png", "regions_zone.png"}) {
+    const PngSize size = png_size(dir / "plots" / name);
+    EXPECT_TRUE(size.valid) << name << "\n" << r.output;
+    EXPECT_EQ(size.width, kFigureWidth) << name;
+    EXPECT_EQ(size.height, kFigureHeight) << name;
+  }
+  // The fixture's runs have S = 1 (their real_time equals time): no note.
+  const Result plain = run("plot '" + (root_ / "sieve").string() + "' --out '" + (dir / "plain").string() + "'");
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_EQ(plain.output.find("real time"), std::string::npos) << plain.output;
+}
+
 TEST_F(PlotCommand, ASectionNeedsSnapshots) {
   const fs::path bare = root_ / "bare";
   fs::create_directories(bare);

@@ -26,7 +26,8 @@ class Recorder : public RunObserver {
       : stop_(stop), stop_stage_(stop_stage), stop_time_s_(stop_time_s) {}
   void sample(const std::vector<double>& row) override {
     rows.push_back(row);
-    if (static_cast<int>(row[2]) == stop_stage_ && row[0] > stop_time_s_) stop_.store(true);
+    // time, real_time, step, stage, ...
+    if (static_cast<int>(row[3]) == stop_stage_ && row[0] > stop_time_s_) stop_.store(true);
   }
   void checkpoint(const RunState& state) override {
     if (state.reason != CheckpointReason::interrupted) return;

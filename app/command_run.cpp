@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -260,7 +261,10 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
   // summary and a checkpoint (at the run's first step boundary).
   const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   ThreadChoice choice{options.threads, ""};  // the default: the cores other processes leave
-  if (options.threads <= 0) choice = choose_threads(omp_get_max_threads(), runnable_processes_elsewhere());
+  if (options.threads <= 0)
+    choice = std::getenv("OMP_NUM_THREADS") != nullptr
+                 ? ThreadChoice{omp_get_max_threads(), ""}  // the user's own choice, as --threads
+                 : choose_threads(omp_get_max_threads(), runnable_processes_elsewhere());
   const int threads = choice.threads;
   if (!choice.note.empty()) fmt::print(stderr, "regodem: note: {}\n", choice.note);
   omp_set_num_threads(threads);
@@ -293,6 +297,13 @@ int execute(const RunOptions& options, const ResumePoint* resume) {
                                    run_input_paths(*spec, options.scenario_path));
     }
     prepared.emplace(PreparedRun::build(*spec, threads));
+    // A signal while the scenario was read or built: stop before any old output goes.
+    if (stop_requested.load()) {
+      lock->release_and_remove_created_directory();
+      fmt::print(stderr, "regodem: interrupted by {} before the run started; nothing in '{}' was changed\n",
+                 signal_name(stop_signal()), directory.string());
+      return exit_status::interrupted;
+    }
     if (resume) {
       check_resumable(*prepared, resume->checkpoint, directory);
     } else {

@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
                   "must be new or empty unless --overwrite")
       ->type_name("OUTDIR");
   run->add_option("--threads", run_options.threads,
-                  "OpenMP threads (default: OMP_NUM_THREADS, else every core)")
+                  "OpenMP threads (default: OMP_NUM_THREADS, else the cores other runnable processes leave free)")
       ->type_name("N")
       ->check(CLI::Range(1, 4096));
   run->add_option("--set", run_options.overrides, set_help)
@@ -71,7 +71,8 @@ int main(int argc, char** argv) {
       "(a copy of SCENARIO) and OUTDIR/overrides.txt (the --set values); with output.snapshots, ParaView\n"
       "files OUTDIR/particles.pvd, OUTDIR/walls.pvd and OUTDIR/vtk/*.vtp. Checkpoints go to\n"
       "OUTDIR/checkpoints/ at the end of each stage, every --checkpoint-every and on Ctrl-C, which stops the run\n"
-      "cleanly (exit status 130) and says how to go on: regodem resume OUTDIR. A second Ctrl-C ends it at once.");
+      "cleanly (exit status 130) and says how to go on: regodem resume OUTDIR; every further Ctrl-C or SIGTERM\n"
+      "is the same request (Ctrl-\\ ends a run at once). Another process writing into OUTDIR is refused.");
 
   ResumeOptions resume_options;
   std::string resume_checkpoint_every;

@@ -17,7 +17,10 @@ struct ThreadChoice {
 };
 
 /// `available` threads (omp_get_max_threads), of which `busy_elsewhere` cores are held
-/// by other runnable processes: available − busy_elsewhere, at least 1.
+/// by other runnable processes: available − busy_elsewhere, at least 1. (The caller
+/// leaves an OMP_NUM_THREADS the user set alone: that is an explicit choice too.
+/// procs_running counts the whole host: in a container on a busy host it undercounts
+/// the threads the container could use.)
 ThreadChoice choose_threads(int available, int busy_elsewhere);
 
 /// Runnable processes other than this one, from /proc/stat's procs_running: the least of

@@ -1,6 +1,7 @@
 #include "io/csv_time_series_writer.hpp"
 
 #include <cerrno>
+#include <fstream>
 #include <iterator>
 #include <stdexcept>
 #include <system_error>
@@ -47,6 +48,23 @@ CsvTimeSeriesWriter::CsvTimeSeriesWriter(std::filesystem::path path, std::size_t
                             fmt::format("cannot continue '{}': it should hold at least {} bytes, it holds {}",
                                         path_.string(), bytes, error ? 0 : size));
   }
+  // A file written by another version (other columns) must not be continued with rows
+  // of this one's: refused before it is cut back.
+  std::ifstream existing(path_, std::ios::binary);
+  std::string header;
+  std::getline(existing, header);
+  std::size_t fields = 1;
+  bool quoted = false;
+  for (const char c : header) {
+    if (c == '"') quoted = !quoted;
+    if (c == ',' && !quoted) ++fields;
+  }
+  if (fields != column_count)
+    throw std::system_error(std::make_error_code(std::errc::invalid_argument),
+                            fmt::format("cannot continue '{}': its header has {} columns, this version writes {} (was "
+                                        "the run started by another version of regodem?)",
+                                        path_.string(), fields, column_count));
+  existing.close();
   std::filesystem::resize_file(path_, bytes);
   stream_.open(path_, std::ios::binary | std::ios::app);
   if (!stream_) {

@@ -108,6 +108,8 @@ std::vector<std::filesystem::path> prepare_output_directory(const std::filesyste
     std::vector<fs::path> entries;
     for (fs::directory_iterator entry(path, error), end; !error && entry != end; entry.increment(error))
       entries.push_back(entry->path());
+    if (error)
+      throw InputError(fmt::format("cannot read '{}' to overwrite it: {}", path.string(), error.message()));
     for (const fs::path& entry : entries) {
       if (is_written_by_a_run(entry) && !fs::is_directory(fs::symlink_status(entry, error)))
         remove(entry);

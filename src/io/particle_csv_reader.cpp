@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "io/text_words.hpp"
 
 namespace regodem {
 namespace {
@@ -53,7 +54,7 @@ std::vector<ParticleRecord> read_particle_csv(const std::string& path) {
     if (!known)
       throw InputError(fmt::format("{}:{}: unknown column '{}' (expected x, y, z, radius, and optionally vx, vy, vz, "
                                    "temperature; SI units)",
-                                   path, line_number, header[c]));
+                                   path, line_number, printable_excerpt(header[c])));
   }
   for (int k : {x, y, z, radius})
     if (where[k] < 0)
@@ -77,7 +78,8 @@ std::vector<ParticleRecord> read_particle_csv(const std::string& path) {
         used = 0;
       }
       if (used != text.size() || text.empty() || !std::isfinite(v))
-        throw InputError(fmt::format("{}:{}: column '{}': '{}' is not a number", path, line_number, names[k], text));
+        throw InputError(
+            fmt::format("{}:{}: column '{}': '{}' is not a number", path, line_number, names[k], printable_excerpt(text)));
       return v;
     };
     ParticleRecord r;

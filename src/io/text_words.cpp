@@ -1,5 +1,7 @@
 #include "io/text_words.hpp"
 
+#include <fmt/format.h>
+
 #include <cctype>
 #include <charconv>
 
@@ -22,6 +24,31 @@ bool parse_double(std::string_view word, double& value) {
   const char* end = word.data() + word.size();
   const auto [ptr, ec] = std::from_chars(word.data(), end, value);
   return ec == std::errc() && ptr == end;
+}
+
+std::string printable_excerpt(std::string_view text, std::size_t max_characters) {
+  std::string out;
+  std::size_t shown = 0;
+  for (std::size_t i = 0; i < text.size(); ++shown) {
+    if (shown == max_characters) return out + "...";
+    const auto byte = static_cast<unsigned char>(text[i]);
+    // A whole UTF-8 sequence passes as it is; any other byte below 0x20 or above 0x7e
+    // is written as \xNN.
+    const std::size_t length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xe ? 3 : (byte >> 3) == 0x1e ? 4 : 0;
+    bool whole = length > 1 && i + length <= text.size();
+    for (std::size_t k = 1; whole && k < length; ++k)
+      whole = (static_cast<unsigned char>(text[i + k]) >> 6) == 0x2;
+    if (length == 1 && byte >= 0x20 && byte != 0x7f) {
+      out += text[i++];
+    } else if (whole) {
+      out.append(text.substr(i, length));
+      i += length;
+    } else {
+      out += fmt::format("\\x{:02x}", byte);
+      ++i;
+    }
+  }
+  return out;
 }
 
 }  // namespace regodem

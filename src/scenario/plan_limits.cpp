@@ -10,9 +10,10 @@
 
 namespace regodem {
 
-void check_stage_step_counts(const std::vector<PlannedStage>& stages, const std::string& step_origin,
-                             const SourceLocation& where) {
+void check_stage_step_counts(const std::vector<PlannedStage>& stages, const std::string& run_step_origin) {
   for (const PlannedStage& stage : stages) {
+    const SourceLocation& where = stage.where;
+    const std::string& step_origin = stage.step_origin.empty() ? run_step_origin : stage.step_origin;
     if (!(stage.step_s > 0.0) || !std::isfinite(stage.step_s))
       throw InputError(fmt::format("{}: stage '{}': the time step is {:.4g} s ({}); it must be a positive number",
                                    where.describe(), stage.name, stage.step_s, step_origin));

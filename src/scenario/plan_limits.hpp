@@ -7,13 +7,9 @@
 #include <vector>
 
 #include "scenario/scenario_spec.hpp"
+#include "sim/stage_plan.hpp"  // max_steps_per_stage
 
 namespace regodem {
-
-/// The most steps one stage may plan: 500x the ~2e9 of the paper's full drilling case
-/// (277,300 particles, 200 s), and far below 2^53, where a step count stops being exact
-/// in a double and long before a 64-bit counter overflows.
-inline constexpr double max_steps_per_stage = 1e12;
 
 /// The most particles one insertion may ask for: exact as a double and as a count, so
 /// that converting it cannot overflow (the memory check then applies).
@@ -28,14 +24,15 @@ struct PlannedStage {
   std::string span;         // what bounds it: "its duration", "its max_duration", ...
   double simulated_s = 0.0;  // the span in simulated time
   double step_s = 0.0;      // the step it advances by
+  std::string step_origin;  // where the step comes from, when not the run's time step
+  SourceLocation where;     // the stage in the file
 };
 
-/// Throws InputError, located at `where`, when a stage plans more than
-/// max_steps_per_stage steps or the step is not a positive finite number. `step_origin`
-/// says where the step comes from (the Rayleigh time of which material and radius), so
-/// that the message points at the value to correct.
-void check_stage_step_counts(const std::vector<PlannedStage>& stages, const std::string& step_origin,
-                             const SourceLocation& where);
+/// Throws InputError, located at the stage, when it plans more than
+/// max_steps_per_stage steps or its step is not a positive finite number. `step_origin`
+/// says where the run's time step comes from (the Rayleigh time of which material and
+/// radius), so that the message points at the value to correct.
+void check_stage_step_counts(const std::vector<PlannedStage>& stages, const std::string& step_origin);
 
 /// Throws InputError, located at `where`, when `particles` need more than this
 /// machine's physical memory at min_bytes_per_particle.

@@ -432,6 +432,7 @@ Insertion build_insertion(const ScenarioSpec& spec, const InsertionSpec& in, con
         fail(in.where, fmt::format("particle {} of {} would start at {:.4g} K, below absolute zero",
                                    ins.from_file.size() + 1, in.from_file, p.temperature_K));
       ins.from_file.push_back(p);
+      ins.from_file_lines.push_back(r.line);
     }
     if (spec.heat.enabled && without_temperature > 0)
       fail(in.where, fmt::format("heat is on, but {} gives no temperature for {} of its {} particles (the first is "
@@ -561,9 +562,9 @@ void check_file_packing_against_walls(const Insertion& ins, const InsertionSpec&
       const double fraction = (p.radius_m - near.distance_m) / (2.0 * p.radius_m);
       if (fraction > in.max_overlap_fraction)
         fail(in.where,
-             fmt::format("{}: particle {} (at ({:.6g}, {:.6g}, {:.6g}) m, radius {:.4g} m) reaches into wall '{}' by "
+             fmt::format("{}:{}: the particle at ({:.6g}, {:.6g}, {:.6g}) m, radius {:.4g} m, reaches into wall '{}' by "
                          "{:.3g} of its diameter, more than the {:.3g} accepted (`max_overlap`)",
-                         in.from_file, k + 1, p.position_m.x, p.position_m.y, p.position_m.z, p.radius_m,
+                         in.from_file, ins.from_file_lines[k], p.position_m.x, p.position_m.y, p.position_m.z, p.radius_m,
                          walls.bodies[w.body].name, fraction, in.max_overlap_fraction));
     }
   }
@@ -571,14 +572,17 @@ void check_file_packing_against_walls(const Insertion& ins, const InsertionSpec&
 
 /// Each stage's span in simulated time and its step, where the plan fixes them (a
 /// static-bed stage's default step depends on the bed, and is not counted).
-std::vector<PlannedStage> planned_stages(const StagePlan& plan, const WallSet& walls, double dt) {
+std::vector<PlannedStage> planned_stages(const ScenarioSpec& spec, const StagePlan& plan, const WallSet& walls,
+                                         double dt) {
   std::vector<PlannedStage> stages;
-  for (const Stage& stage : plan.stages) {
-    PlannedStage planned{stage.name, "its duration", stage.duration_s, dt};
+  for (std::size_t s = 0; s < plan.stages.size(); ++s) {
+    const Stage& stage = plan.stages[s];
+    PlannedStage planned{stage.name, "its duration", stage.duration_s, dt, "", spec.stages[s].where};
     if (stage.freezes_mechanics()) {
-      if (stage.thermal_time_step_s <= 0.0) continue;
+      if (stage.thermal_time_step_s <= 0.0) continue;  // the stage runner checks the default step
       planned.step_s = stage.thermal_time_step_s;
       planned.span = "its duration in thermal steps";
+      planned.step_origin = "the stage's thermal_time_step";
       if (stage.ends_on_measurement()) planned.simulated_s = stage.max_duration_s;
     } else if (stage.until_settled || stage.ends_on_measurement()) {
       planned.simulated_s = stage.max_duration_s;
@@ -913,12 +917,11 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                                         std::round(stage.duration_s / dt)));
     impl.plan.stages.push_back(std::move(stage));
   }
-  check_stage_step_counts(planned_stages(impl.plan, impl.simulation->walls, dt),
+  check_stage_step_counts(planned_stages(spec, impl.plan, impl.simulation->walls, dt),
                           spec.time_step_s > 0.0
                               ? "the scenario's time_step"
                               : fmt::format("{:.3g} x the Rayleigh time {:.4g} s of the particle with {}", dt / min_rayleigh,
-                                            min_rayleigh, min_rayleigh_particle),
-                          SourceLocation{spec.file, 0, 0, "stages"});
+                                            min_rayleigh, min_rayleigh_particle));
   impl.plan.sample_interval_s = spec.output.interval_s;
   impl.plan.region_names = tags;
   if (const SnapshotSpec& snap = spec.output.snapshots; snap.enabled) {

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "io/text_words.hpp"
 #include "scenario/key_suggestions.hpp"
 
 namespace regodem {
@@ -141,22 +142,6 @@ std::optional<std::string> YamlValue::choice(const std::vector<std::string>& all
   return std::nullopt;
 }
 
-std::string printable_excerpt(std::string_view text, std::size_t max_characters) {
-  std::string out;
-  std::size_t shown = 0;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (shown == max_characters) return out + "...";
-    const auto byte = static_cast<unsigned char>(text[i]);
-    if (byte >= 0x20 && byte != 0x7f) {
-      out += text[i];  // UTF-8 sequences pass whole: load_yaml has checked them
-    } else {
-      out += fmt::format("\\x{:02x}", byte);
-    }
-    if (byte < 0x80 || byte >= 0xc0) ++shown;  // count characters, not continuation bytes
-  }
-  return out;
-}
-
 namespace {
 
 /// Line and column (1-based) of byte `offset` of `text`.
@@ -218,7 +203,11 @@ void check_nesting(std::string_view text, const std::string& file) {
       if (c == quote) quote = 0;
       continue;
     }
-    if (c == '"' || c == '\'') quote = c;
+    // A quote opens a quoted scalar only where one can start (don't is plain text).
+    const char before = i == 0 ? '\n' : text[i - 1];
+    const bool scalar_start = before == ' ' || before == '\n' || before == '\t' || before == '[' ||
+                              before == '{' || before == ',' || before == ':' || before == '-';
+    if ((c == '"' || c == '\'') && scalar_start) quote = c;
     else if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\n')) comment = true;
     else if (c == '[' || c == '{') {
       if (++depth > kMaxDepth) {
@@ -241,8 +230,11 @@ YAML::Node load_yaml(const std::string& text, const std::string& file) {
   try {
     documents = YAML::LoadAll(text);
   } catch (const YAML::ParserException& problem) {
-    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", file, problem.mark.line + 1,
-                                 problem.mark.column + 1, problem.msg));
+    // yaml-cpp says "bad file" when its nesting guard trips (block lists thousands deep).
+    const std::string what = problem.msg == YAML::ErrorMsg::BAD_FILE
+                                 ? std::string("lists or maps nested too deep to read; no scenario needs that")
+                                 : "YAML syntax error: " + problem.msg;
+    throw InputError(fmt::format("{}:{}:{}: {}", file, problem.mark.line + 1, problem.mark.column + 1, what));
   }
   // A second document ("---" and more) would be silently ignored: refuse it.
   for (std::size_t k = 1; k < documents.size(); ++k)

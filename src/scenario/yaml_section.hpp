@@ -138,10 +138,6 @@ class YamlSection {
 /// more than 64 deep, and a second document after '---' (which would be ignored).
 YAML::Node load_yaml(const std::string& text, const std::string& file);
 
-/// `text` for a message: control bytes as \xNN, at most `max_characters` characters
-/// and "..." after, so that a damaged file is not echoed back raw.
-std::string printable_excerpt(std::string_view text, std::size_t max_characters = 60);
-
 /// Names of materials, walls, stages...: letters, digits, '_' and '-' (they appear in
 /// --set paths and, later, in output file names).
 bool is_valid_name(std::string_view name);

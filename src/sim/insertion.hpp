@@ -41,6 +41,7 @@ struct Insertion {
   InitialTemperature temperature;
   std::size_t stage = 0;
   std::vector<NewParticle> from_file;  // when not empty: these particles, placed as given
+  std::vector<int> from_file_lines;    // their lines in the file, for messages
 
   // Progress (reset by start()).
   std::size_t inserted = 0;

@@ -16,6 +16,7 @@
 #include "geometry/mesh_inside.hpp"
 #include "sim/geometric_packing.hpp"
 #include "sim/simulation.hpp"
+#include "sim/stage_plan.hpp"
 #include "sim/static_heat_stepper.hpp"
 
 namespace regodem {
@@ -27,7 +28,15 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 /// Steps to cover `span_s` at `step_s`, as the stage runner counts them.
 std::uint64_t steps_to_cover(double span_s, double step_s) {
-  return span_s <= 0.0 ? 0 : static_cast<std::uint64_t>(std::ceil(span_s / step_s - 1e-9));
+  if (span_s <= 0.0) return 0;
+  const double steps = std::ceil(span_s / step_s - 1e-9);
+  // A static-bed stage's default step is known only from the sampled bed: its count is
+  // checked here (the plan's were when it was built), so that no count can overflow.
+  if (!(steps <= max_steps_per_stage))
+    throw InputError(fmt::format("a stage would take {:.3g} steps of {:.4g} s for its {:.4g} s; at most {:.0e} steps a "
+                                 "stage can be run",
+                                 steps, step_s, span_s, max_steps_per_stage));
+  return static_cast<std::uint64_t>(steps);
 }
 
 /// When a fed wall reaches `depth_m` after `start_s` (simulated, from the run's start),

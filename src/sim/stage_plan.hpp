@@ -15,6 +15,13 @@
 
 namespace regodem {
 
+/// The most steps one stage may plan: 500x the ~2e9 of the paper's full drilling case
+/// (277,300 particles, 200 s), and far below 2^53, where a step count stops being exact
+/// in a double and long before a 64-bit counter overflows. The scenario's plan is
+/// checked against it when built; a static-bed stage's default step, known only once
+/// its bed is, when the stage starts.
+inline constexpr double max_steps_per_stage = 1e12;
+
 /// Changes the properties of one material pair (or every pair) while a stage runs.
 struct PairOverride {
   int material_a = -1, material_b = -1;  // -1, -1: every pair

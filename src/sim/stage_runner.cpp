@@ -75,10 +75,10 @@ bool spun(const WallBody& w) { return norm2(w.spin_axis) > 0.0; }
 /// A stage that ends at a drill depth: the time its wall needs to get there at its
 /// feed speed (infinite when it is not moving).
 /// A step count from a number of steps that the plan's limits keep below 1e12; one that
-/// is not finite (a wall that never gets there) counts 0, "not known", rather than
-/// overflowing the conversion.
+/// is not finite (a wall that never gets there) counts 0, "not known", and one past the
+/// limit (a stage refused as it starts) is capped, rather than overflowing the conversion.
 std::uint64_t whole_steps(double steps) {
-  return std::isfinite(steps) && steps > 0.0 ? static_cast<std::uint64_t>(steps) : 0;
+  return std::isfinite(steps) && steps > 0.0 ? static_cast<std::uint64_t>(std::min(steps, max_steps_per_stage)) : 0;
 }
 
 double time_to_depth_s(const Simulation& sim, const Stage& stage) {
@@ -306,6 +306,14 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       result = StageResult::failed;
     }
     const double step_s = frozen ? frozen->time_step_s() : dt;
+    if (frozen && !inside && result == StageResult::finished &&
+        !(stage.duration_s / step_s <= max_steps_per_stage)) {
+      failure = fmt::format("stage '{}' would take {:.3g} thermal steps of {:.4g} s (the static bed's default step) "
+                            "for its {:.4g} s; at most {:.0e} steps a stage can be run: shorten it, or give a larger "
+                            "thermal_time_step",
+                            stage.name, stage.duration_s / step_s, step_s, stage.duration_s, max_steps_per_stage);
+      result = StageResult::failed;
+    }
     const double stage_end_s =
         info.start_time_s + (stage.ends_on_measurement() ? stage.max_duration_s : stage.duration_s);
     const std::uint64_t check_every = frozen ? 1 : kCheckEverySteps;
@@ -314,7 +322,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         inside                ? inside->planned_steps
         : stage.ends_at_depth() ? whole_steps(std::ceil(time_to_depth_s(sim, stage) / dt))
         : stage.until_settled || stage.ends_on_measurement() ? 0
-        : frozen            ? static_cast<std::uint64_t>(std::ceil(stage.duration_s / step_s - 1e-9))
+        : frozen            ? whole_steps(std::ceil(stage.duration_s / step_s - 1e-9))
                             : static_cast<std::uint64_t>(std::llround(stage.duration_s / dt));
     const std::uint64_t min_steps = static_cast<std::uint64_t>(std::llround(stage.min_duration_s / dt));
     const double max_steps_d = stage.max_duration_s / dt;

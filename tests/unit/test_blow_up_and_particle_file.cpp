@@ -147,8 +147,8 @@ TEST(ParticleCsv, APackingIsCheckedForOverlapsTheDomainAndTheWalls) {
       << outside;
   // The floor at z = -5 mm: a centre 0.5 mm above it reaches 0.25 of the diameter in.
   const std::string wall = packing_refusal("x,y,z,radius\n0,0,0,0.001\n0,0,-0.0045,0.001\n");
-  EXPECT_NE(wall.find("particle 2 (at (0, 0, -0.0045) m, radius 0.001 m) reaches into wall 'floor' by 0.25 of its "
-                      "diameter"),
+  EXPECT_NE(wall.find(":3: the particle at (0, 0, -0.0045) m, radius 0.001 m, reaches into wall 'floor' by 0.25 of "
+                      "its diameter"),
             std::string::npos)
       << wall;
 }

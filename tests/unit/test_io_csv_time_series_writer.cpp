@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -105,6 +106,24 @@ TEST_F(CsvTimeSeriesWriterTest, ReplacesAnOldFile) {
   { std::ofstream(directory_ / "series.csv") << "stale,content\n1,2\n3,4\n"; }
   { CsvTimeSeriesWriter writer(directory_ / "series.csv", columns_); }
   EXPECT_EQ(read_lines(directory_ / "series.csv").size(), 1u);
+}
+
+// A run resumed by a version that writes other columns (real_time was added) must not
+// append its rows under the old header: refused, the file as it was.
+TEST_F(CsvTimeSeriesWriterTest, ContinuingAFileOfOtherColumnsIsRefusedAndChangesNothing) {
+  const std::string old = "time [s],x [m]\n1,2\n3,4\n";
+  { std::ofstream(directory_ / "series.csv") << old; }
+  try {
+    CsvTimeSeriesWriter writer(directory_ / "series.csv", columns_.size(), 16, 1);
+    FAIL() << "expected std::system_error";
+  } catch (const std::system_error& error) {
+    EXPECT_NE(std::string(error.what()).find("its header has 2 columns, this version writes " +
+                                             std::to_string(columns_.size())),
+              std::string::npos)
+        << error.what();
+  }
+  std::ifstream in(directory_ / "series.csv", std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()), old);
 }
 
 TEST_F(CsvTimeSeriesWriterTest, UnwritablePathThrowsNamingIt) {

@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "io/run_directory_lock.hpp"
 #include "regodem_process.hpp"
 
 namespace regodem {
@@ -150,7 +151,11 @@ TEST_F(CalibrateCli, InterruptedCalibrationContinuesWithoutRerunningFinishedRuns
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (!fs::exists(dir_ / "out/runs/point_02/summary.json") && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  // Two signals, 1 ms apart, as `timeout` sends them: the second is reported, not passed
+  // on, and the running child still stops cleanly with its summary.
   ASSERT_EQ(::kill(pid, SIGINT), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ::kill(pid, SIGINT);
   const Finished interrupted = test::wait_for(pid, log);
   ASSERT_EQ(interrupted.exit_code, 130) << interrupted.output;
   EXPECT_TRUE(contains(interrupted.output, "Continue with: regodem calibrate slow.yaml -o")) << interrupted.output;
@@ -177,6 +182,16 @@ TEST_F(CalibrateCli, InterruptedCalibrationContinuesWithoutRerunningFinishedRuns
   const json a = calibration(dir_ / "whole"), b = calibration(dir_ / "out");
   for (const char* key : {"targets", "solve", "solution"}) EXPECT_EQ(a.at(key), b.at(key)) << key;
   EXPECT_EQ(a.at("verification").at("responses"), b.at("verification").at("responses"));
+}
+
+// Another process holds the calibration's directory: refused before any run starts.
+TEST_F(CalibrateCli, ADirectoryInUseIsRefusedNamingItsHolder) {
+  const RunDirectoryLock held(dir_ / "out", "regodem calibrate other.yaml");
+  const Finished f = run_regodem({"calibrate", "plate_calibration.yaml", "-o", "out"}, dir_);
+  EXPECT_EQ(f.exit_code, 2) << f.output;
+  EXPECT_TRUE(contains(f.output, "is in use by pid " + std::to_string(::getpid()) + " (regodem calibrate other.yaml)"))
+      << f.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out/runs"));
 }
 
 TEST_F(CalibrateCli, FailedRunAndBadInputAreReported) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds RegoDEM with warnings as errors and runs every test; then builds with the
-# address and undefined-behaviour sanitizers and runs the unit tests under them.
+# address and undefined-behaviour sanitizers and runs every test again under them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs="${REGODEM_BUILD_JOBS:-2}"

@@ -26,6 +26,15 @@ bool parse_double(std::string_view word, double& value) {
   return ec == std::errc() && ptr == end;
 }
 
+std::size_t utf8_sequence_length(std::string_view text, std::size_t i) {
+  const auto lead = static_cast<unsigned char>(text[i]);
+  const std::size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xe ? 3 : (lead >> 3) == 0x1e ? 4 : 0;
+  if (length == 0 || i + length > text.size()) return 0;
+  for (std::size_t k = 1; k < length; ++k)
+    if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return 0;
+  return length;
+}
+
 std::string printable_excerpt(std::string_view text, std::size_t max_characters) {
   std::string out;
   std::size_t shown = 0;
@@ -34,13 +43,10 @@ std::string printable_excerpt(std::string_view text, std::size_t max_characters)
     const auto byte = static_cast<unsigned char>(text[i]);
     // A whole UTF-8 sequence passes as it is; any other byte below 0x20 or above 0x7e
     // is written as \xNN.
-    const std::size_t length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xe ? 3 : (byte >> 3) == 0x1e ? 4 : 0;
-    bool whole = length > 1 && i + length <= text.size();
-    for (std::size_t k = 1; whole && k < length; ++k)
-      whole = (static_cast<unsigned char>(text[i + k]) >> 6) == 0x2;
+    const std::size_t length = utf8_sequence_length(text, i);
     if (length == 1 && byte >= 0x20 && byte != 0x7f) {
       out += text[i++];
-    } else if (whole) {
+    } else if (length > 1) {
       out.append(text.substr(i, length));
       i += length;
     } else {

@@ -158,16 +158,6 @@ std::pair<int, int> line_and_column(std::string_view text, std::size_t offset) {
   return {line, column};
 }
 
-/// The length of the UTF-8 sequence that starts at text[i], or 0 if it is not one.
-std::size_t utf8_sequence_length(std::string_view text, std::size_t i) {
-  const auto lead = static_cast<unsigned char>(text[i]);
-  const std::size_t length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xe ? 3 : (lead >> 3) == 0x1e ? 4 : 0;
-  if (length == 0 || i + length > text.size()) return 0;
-  for (std::size_t k = 1; k < length; ++k)
-    if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return 0;
-  return length;
-}
-
 /// A scenario is UTF-8 text: a NUL, another control character or a byte that is not
 /// UTF-8 means a binary or damaged file, which the YAML parser would otherwise report
 /// as an "unknown escape character" or echo back raw.

@@ -30,6 +30,18 @@ inline std::string read_file(const std::filesystem::path& path) {
   return {std::istreambuf_iterator<char>(input), std::istreambuf_iterator<char>()};
 }
 
+/// A new, empty folder `prefix`_PID in the temporary directory, holding a copy of
+/// tests/data/scenarios/checkpoint_small.yaml as small.yaml: the small run the
+/// command-line tests start, signal and resume.
+inline std::filesystem::path folder_with_the_small_run(const std::string& prefix) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(std::filesystem::path(REGODEM_SOURCE_DIR) / "tests/data/scenarios/checkpoint_small.yaml",
+                             dir / "small.yaml");
+  return dir;
+}
+
 inline std::size_t line_count(const std::filesystem::path& path) {
   const std::string text = read_file(path);
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));

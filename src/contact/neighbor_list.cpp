@@ -86,7 +86,7 @@ void NeighborList::restore_history(const ParticleStore& particles, int threads) 
 }
 
 void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid,
-                           double skin_m, int threads, bool history_saved) {
+                           const NeighborSkin& skin, int threads, bool history_saved) {
   if (!history_saved) save_history(particles);
   const std::size_t n = particles.size();
 
@@ -104,7 +104,91 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   {
     std::vector<std::uint32_t> order(n), fill(cell_start_.begin(), cell_start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) order[fill[cell_of_particle_[i]]++] = static_cast<std::uint32_t>(i);
+    // By id within a cell (cells hold a few particles: insertion sort), so that the
+    // order, and every sum over it, depends on the positions and ids alone, not on the
+    // order the particles had (a restore, another rank's insertions).
+    const std::vector<ParticleId>& ids = particles.id;
+    for (std::size_t c = 0; c < grid.cell_count(); ++c)
+      for (std::uint32_t a = cell_start_[c] + 1; a < cell_start_[c + 1]; ++a)
+        for (std::uint32_t b = a; b > cell_start_[c] && ids[order[b - 1]] > ids[order[b]]; --b)
+          std::swap(order[b - 1], order[b]);
     particles.permute(order);
+  }
+
+  // Each particle's and each wall body's half of the skin (NeighborSkin).
+  const double slow_half = 0.5 * skin.skin_m, most_half = slow_half * std::max(1.0, skin.max_half_skin_factor);
+  const auto half_for = [&](double step_m) {
+    return std::clamp(skin.steps_ahead * step_m, slow_half, most_half);
+  };
+  slow_half_skin_m_ = slow_half;
+  half_skin_m_.resize(n);
+  inverse_half_skin2_.resize(n);
+  std::vector<std::uint32_t> fast;
+  double largest_radius = 0.0, largest_fast_half = slow_half;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double h = skin.time_step_s > 0.0 ? half_for(norm(particles.velocity_m_per_s[i]) * skin.time_step_s)
+                                            : slow_half;
+    half_skin_m_[i] = h;
+    inverse_half_skin2_[i] = 1.0 / (h * h);
+    largest_radius = std::max(largest_radius, particles.radius_m[i]);
+    if (h > slow_half) {
+      fast.push_back(static_cast<std::uint32_t>(i));
+      largest_fast_half = std::max(largest_fast_half, h);
+    }
+  }
+  body_half_skin_m_.assign(walls.bodies.size(), slow_half);
+  for (std::size_t b = 0; b < walls.bodies.size() && b < skin.body_step_m.size(); ++b)
+    body_half_skin_m_[b] = half_for(skin.body_step_m[b]);
+
+  const double cell = grid.cell_size_m;
+  const auto& x = particles.position_m;
+  const auto& radius = particles.radius_m;
+  const auto& id = particles.id;
+  const std::vector<double>& half = half_skin_m_;
+  // Whether the segment between two particles crosses one of the thin walls (a sieve):
+  // two particles that can touch through a wall before the next rebuild are both within
+  // reach of it, so it is among either one's thin walls.
+  const auto blocked_by = [&](const std::vector<std::uint32_t>& thin_walls, std::size_t i, std::size_t j) {
+    for (const std::uint32_t w : thin_walls)
+      if (segment_crosses_wall(walls.primitives[w], x[i], x[j])) return true;
+    return false;
+  };
+  const auto thin_walls_of = [&](std::size_t i, std::vector<std::uint32_t>& thin_walls) {
+    thin_walls.clear();
+    for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
+      const WallPrimitive& wall = walls.primitives[w];
+      if (wall.shape == PrimitiveShape::plane) continue;
+      const WallProximity p = closest_wall_point(wall, x[i]);
+      if (p.candidate && p.distance_m < radius[i] + half[i] + body_half_skin_m_[wall.body]) thin_walls.push_back(w);
+    }
+  };
+
+  // The pairs whose partner is fast: each fast particle looks for its owners, of any
+  // size, as far as its own half reaches. (Slow partners are found by their owners.)
+  fast_pairs_.clear();
+  {
+    std::vector<std::uint32_t> thin_walls;
+    for (const std::uint32_t f : fast) {
+      thin_walls_of(f, thin_walls);
+      const int reach = static_cast<int>(std::ceil((radius[f] + largest_radius + half[f] + largest_fast_half) / cell));
+      int cx, cy, cz;
+      grid.coordinates(x[f], cx, cy, cz);
+      for (int iz = std::max(0, cz - reach); iz <= std::min(grid.nz - 1, cz + reach); ++iz)
+        for (int iy = std::max(0, cy - reach); iy <= std::min(grid.ny - 1, cy + reach); ++iy) {
+          const std::uint32_t row = grid.index(0, iy, iz);
+          const std::uint32_t c0 = row + static_cast<std::uint32_t>(std::max(0, cx - reach));
+          const std::uint32_t c1 = row + static_cast<std::uint32_t>(std::min(grid.nx - 1, cx + reach));
+          for (std::uint32_t k = cell_start_[c0]; k < cell_start_[c1 + 1]; ++k) {
+            if (k == f || !owns_pair(radius[k], id[k], radius[f], id[f])) continue;
+            const double cutoff = radius[k] + radius[f] + half[k] + half[f];
+            if (norm2(x[k] - x[f]) < cutoff * cutoff && !blocked_by(thin_walls, f, k)) fast_pairs_.emplace_back(k, f);
+          }
+        }
+    }
+    std::sort(fast_pairs_.begin(), fast_pairs_.end());
+    fast_pair_offset_.assign(n + 1, 0);
+    for (const auto& pair : fast_pairs_) ++fast_pair_offset_[pair.first + 1];
+    for (std::size_t i = 0; i < n; ++i) fast_pair_offset_[i + 1] += fast_pair_offset_[i];
   }
 
   thread_partners_.resize(threads);
@@ -115,10 +199,6 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   wall_offset.assign(n + 1, 0);
   mesh_offset.assign(n + 1, 0);
   touching_.assign(n, 0);
-  const double cell = grid.cell_size_m;
-  const auto& x = particles.position_m;
-  const auto& radius = particles.radius_m;
-  const auto& id = particles.id;
 
 #pragma omp parallel num_threads(threads)
   {
@@ -135,25 +215,25 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     mesh_hits.clear();
     mesh_triangles.clear();
     for (std::size_t i = begin; i < end; ++i) {
-      const double ri = radius[i];
+      const double ri = radius[i], hi = half[i];
       // Walls first: a pair that touches through a thin wall (a sieve) is no pair.
       const std::size_t first_wall = wall_hits.size();
       thin_walls.clear();
       for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
-        const WallProximity p = closest_wall_point(walls.primitives[w], x[i]);
-        if (p.candidate && p.distance_m < ri + skin_m) {
+        const WallPrimitive& wall = walls.primitives[w];
+        const WallProximity p = closest_wall_point(wall, x[i]);
+        if (p.candidate && p.distance_m < ri + hi + body_half_skin_m_[wall.body]) {
           wall_hits.push_back(w);
-          if (walls.primitives[w].shape != PrimitiveShape::plane) thin_walls.push_back(w);
+          if (wall.shape != PrimitiveShape::plane) thin_walls.push_back(w);
         }
       }
       wall_offset[i + 1] = static_cast<std::uint32_t>(wall_hits.size() - first_wall);
-      // Mesh triangles within the radius plus the skin, found through each mesh's grid
-      // in its reference frame.
+      // Mesh triangles within reach, found through each mesh's grid in its reference frame.
       const std::size_t first_mesh_entry = mesh_triangles.size();
       for (std::uint32_t m = 0; m < walls.meshes.size(); ++m) {
         const MeshWall& mesh = walls.meshes[m];
         const Vec3 local = walls.bodies[mesh.body].pose.to_reference(x[i]);
-        const double reach = ri + skin_m;
+        const double reach = ri + hi + body_half_skin_m_[mesh.body];
         if (norm2(local - mesh.bounding_centre_m) > (mesh.bounding_radius_m + reach) * (mesh.bounding_radius_m + reach))
           continue;
         mesh.grid.candidates(local, reach, candidates);
@@ -168,7 +248,8 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
       }
       mesh_offset[i + 1] = static_cast<std::uint32_t>(mesh_triangles.size() - first_mesh_entry);
 
-      const int reach = static_cast<int>(std::ceil((2.0 * ri + skin_m) / cell));
+      // Slow partners no larger than the owner, within R_i + R_j + h_i + skin/2.
+      const int reach = static_cast<int>(std::ceil((2.0 * ri + hi + slow_half) / cell));
       int cx, cy, cz;
       grid.coordinates(x[i], cx, cy, cz);
       const std::size_t first = partners.size();
@@ -178,27 +259,21 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
           const std::uint32_t c0 = row + static_cast<std::uint32_t>(std::max(0, cx - reach));
           const std::uint32_t c1 = row + static_cast<std::uint32_t>(std::min(grid.nx - 1, cx + reach));
           for (std::uint32_t j = cell_start_[c0]; j < cell_start_[c1 + 1]; ++j) {
-            if (j == i || !owns_pair(ri, id[i], radius[j], id[j])) continue;
-            const double cutoff = ri + radius[j] + skin_m;
-            const double dist2 = norm2(x[j] - x[i]);
-            if (dist2 < cutoff * cutoff) {
-              // Two particles that can touch through a wall before the next rebuild are
-              // both within their radius plus the skin of it, so the wall is among the
-              // owner's thin walls.
-              bool blocked = false;
-              for (const std::uint32_t w : thin_walls)
-                blocked = blocked || segment_crosses_wall(walls.primitives[w], x[i], x[j]);
-              if (blocked) continue;
-              partners.push_back(j);
-              const double touch = ri + radius[j];
-              if (dist2 < touch * touch) ++touching_[i];
-            }
+            if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j])) continue;
+            const double cutoff = ri + radius[j] + hi + slow_half;
+            if (norm2(x[j] - x[i]) < cutoff * cutoff && !blocked_by(thin_walls, i, j)) partners.push_back(j);
           }
         }
+      // And the fast ones found above.
+      for (std::uint32_t e = fast_pair_offset_[i]; e < fast_pair_offset_[i + 1]; ++e)
+        partners.push_back(fast_pairs_[e].second);
       // Deterministic, cache-friendly order within the owner's list.
       std::sort(partners.begin() + static_cast<std::ptrdiff_t>(first), partners.end());
+      for (std::size_t e = first; e < partners.size(); ++e) {
+        const double touch = ri + radius[partners[e]];
+        if (norm2(x[partners[e]] - x[i]) < touch * touch) ++touching_[i];
+      }
       offset[i + 1] = static_cast<std::uint32_t>(partners.size() - first);
-
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -220,44 +295,78 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   }
   restore_history(particles, threads);
 
-  // Split owners between threads by estimated force-pass work: a list entry costs a
-  // distance check, a contact (pairs touching now) about ten times more.
-  thread_begin.assign(threads + 1, static_cast<std::uint32_t>(n));
-  thread_begin[0] = 0;
-  auto work_of = [&](std::size_t i) {
-    return 1.0 + (offset[i + 1] - offset[i]) + 3.0 * (wall_offset[i + 1] - wall_offset[i]) +
-           4.0 * (mesh_offset[i + 1] - mesh_offset[i]) + 10.0 * touching_[i];
-  };
-  double total_work = 0.0;
-  for (std::size_t i = 0; i < n; ++i) total_work += work_of(i);
-  double work_before = 0.0;
-  int next_thread = 1;
-  for (std::size_t i = 0; i < n && next_thread < threads; ++i) {
-    if (work_before >= total_work * next_thread / threads) thread_begin[next_thread++] = static_cast<std::uint32_t>(i);
-    work_before += work_of(i);
-  }
+  index_partners(n);
+  split_owners(threads);
 
   position_at_build_m_ = particles.position_m;
   ++rebuilds_;
 }
 
-bool NeighborList::needs_rebuild(const ParticleStore& particles, const WallSet& walls, double skin_m,
-                                 int threads) const {
-  const std::size_t n = particles.size();
-  if (position_at_build_m_.size() != n || offset.size() != n + 1) return true;
-  double max_move2 = 0.0;
-#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096) reduction(max : max_move2)
-  for (std::size_t i = 0; i < n; ++i)
-    max_move2 = std::max(max_move2, norm2(particles.position_m[i] - position_at_build_m_[i]));
-  return needs_rebuild(n, std::sqrt(max_move2), walls, skin_m);
+void NeighborList::index_partners(std::size_t particle_count) {
+  owner_offset.assign(particle_count + 1, 0);
+  for (const std::uint32_t j : partner) ++owner_offset[j + 1];
+  for (std::size_t j = 0; j < particle_count; ++j) owner_offset[j + 1] += owner_offset[j];
+  owner_entry.resize(partner.size());
+  std::vector<std::uint32_t> fill(owner_offset.begin(), owner_offset.end() - 1);
+  for (std::uint32_t k = 0; k < partner.size(); ++k) owner_entry[fill[partner[k]]++] = k;
 }
 
-bool NeighborList::needs_rebuild(std::size_t particle_count, double max_displacement_m, const WallSet& walls,
-                                 double skin_m) const {
-  if (position_at_build_m_.size() != particle_count || offset.size() != particle_count + 1) return true;
-  // Two particles closing on each other may each have moved max_displacement_m.
-  return 2.0 * max_displacement_m > skin_m ||
-         max_displacement_m + walls.max_displacement_since_build_m() > skin_m;
+void NeighborList::split_owners(int threads) {
+  // Estimated force-pass work: a list entry costs a distance check, a contact (pairs
+  // touching at the build) about ten times more; a gathered partner entry one more.
+  const std::size_t n = offset.empty() ? 0 : offset.size() - 1;
+  const bool touching_known = touching_.size() == n;
+  auto work_of = [&](std::size_t i) {
+    return 1.0 + (offset[i + 1] - offset[i]) + 3.0 * (wall_offset[i + 1] - wall_offset[i]) +
+           4.0 * (mesh_offset[i + 1] - mesh_offset[i]) + (touching_known ? 10.0 * touching_[i] : 0.0) +
+           (owner_offset.size() == n + 1 ? owner_offset[i + 1] - owner_offset[i] : 0.0);
+  };
+  thread_begin.assign(threads + 1, static_cast<std::uint32_t>(n));
+  thread_begin[0] = 0;
+  double total_work = 0.0;
+  for (std::size_t i = 0; i < n; ++i) total_work += work_of(i);
+  double work_before = 0.0;
+  int next_thread = 1;
+  for (std::size_t i = 0; i < n && next_thread < threads; ++i) {
+    // Boundaries on blocks: a block's wall sums are one thread's.
+    if (i % kOwnerBlock == 0 && work_before >= total_work * next_thread / threads)
+      thread_begin[next_thread++] = static_cast<std::uint32_t>(i);
+    work_before += work_of(i);
+  }
+}
+
+void NeighborList::restore_build_state(BuildState state) {
+  position_at_build_m_ = std::move(state.positions_m);
+  half_skin_m_ = std::move(state.half_skin_m);
+  inverse_half_skin2_.resize(half_skin_m_.size());
+  for (std::size_t i = 0; i < half_skin_m_.size(); ++i) inverse_half_skin2_[i] = 1.0 / (half_skin_m_[i] * half_skin_m_[i]);
+  body_half_skin_m_ = std::move(state.body_half_skin_m);
+  slow_half_skin_m_ = state.slow_half_skin_m;
+  rebuilds_ = state.rebuilds;
+}
+
+bool NeighborList::needs_rebuild(const ParticleStore& particles, const WallSet& walls, int threads) const {
+  const std::size_t n = particles.size();
+  if (position_at_build_m_.size() != n || inverse_half_skin2_.size() != n || offset.size() != n + 1) return true;
+  double largest = 0.0;
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096) reduction(max : largest)
+  for (std::size_t i = 0; i < n; ++i)
+    largest = std::max(largest, norm2(particles.position_m[i] - position_at_build_m_[i]) * inverse_half_skin2_[i]);
+  return needs_rebuild(n, largest, walls);
+}
+
+bool NeighborList::needs_rebuild(std::size_t particle_count, double max_displacement_ratio2, const WallSet& walls) const {
+  if (position_at_build_m_.size() != particle_count || inverse_half_skin2_.size() != particle_count ||
+      offset.size() != particle_count + 1 || body_half_skin_m_.size() != walls.bodies.size())
+    return true;
+  // A pair closes by at most the two particles' displacements, each within its own half.
+  if (max_displacement_ratio2 > 1.0) return true;
+  // A wall may use its own half and what every particle has left of its own (at least
+  // skin/2 (1 - the largest ratio), each half being at least skin/2).
+  const double particles_left_m = slow_half_skin_m_ * (1.0 - std::sqrt(max_displacement_ratio2));
+  for (std::size_t b = 0; b < walls.bodies.size(); ++b)
+    if (walls.bodies[b].displacement_since_build_m > body_half_skin_m_[b] + particles_left_m) return true;
+  return false;
 }
 
 }  // namespace regodem

@@ -5,9 +5,16 @@
 // the larger particle (the lower id between equals). A particle then searches only
 // for partners no larger than itself, within 2R + skin, so the grid cells can be sized
 // for the smallest particles and a 4:1 size mixture costs no more than it must.
-// Rebuilding sorts the particles by cell (cache locality) and carries the contact
+// Rebuilding sorts the particles by cell, and by id within a cell (cache locality, and
+// an order that depends on the positions and ids alone), and carries the contact
 // history (the tangential spring) across, keyed by global particle ids.
+//
+// The force pass is the same for any thread count: each contact's share for the
+// partner is written to its entry, and each particle then gathers them over its
+// entries as a partner (`owner_offset`/`owner_entry`, in owner order); wall sums go by
+// fixed blocks of owners (kOwnerBlock), to which the thread ranges are aligned.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/particle_store.hpp"
@@ -37,6 +44,27 @@ inline bool owns_pair(double radius_i, ParticleId id_i, double radius_j, Particl
   return radius_i > radius_j || (radius_i == radius_j && id_i < id_j);
 }
 
+/// The lists' skin (DESIGN.md section 5), shared out between the two sides of every
+/// pair. Each particle has its own half: skin/2, or, when it moves fast, the distance it
+/// covers in `steps_ahead` steps at its speed at the build (at most max_half_skin_factor
+/// x skin/2); each wall body likewise from its surface's speed. A pair is listed within
+/// R_i + R_j + h_i + h_j, a wall within R_i + h_i + h_wall, and the lists hold until a
+/// particle has moved more than its own half or a wall more than its own (plus what the
+/// particles have left). A few grains thrown by a drill then no longer rebuild the whole
+/// list every step or two (docs/benchmarks.md, "The drilling window").
+struct NeighborSkin {
+  double skin_m = 0.0;
+  double time_step_s = 0.0;  // 0: every particle and wall has skin/2
+  double steps_ahead = 8.0;
+  double max_half_skin_factor = 4.0;
+  // Per wall body: its surface's largest displacement in one step (empty: none move).
+  std::vector<double> body_step_m;
+
+  NeighborSkin() = default;
+  /// A uniform skin: every half is skin/2.
+  NeighborSkin(double skin) : skin_m(skin) {}  // NOLINT(google-explicit-constructor)
+};
+
 class NeighborList {
  public:
   // Particle pairs: partners of owner i are partner[offset[i] .. offset[i+1]).
@@ -53,31 +81,53 @@ class NeighborList {
   std::vector<std::uint32_t> mesh_wall;
   std::vector<std::uint32_t> mesh_triangle;
   std::vector<Vec3> mesh_tangential_history_m;
-  // Owner ranges for the force pass: thread t handles [thread_begin[t], thread_begin[t+1]).
+  // Each particle's entries as a partner: pair entries owner_entry[owner_offset[j] ..
+  // owner_offset[j+1]) have partner j, ascending (so by owner index). Derived from the
+  // pair list (index_partners()), not saved.
+  std::vector<std::uint32_t> owner_offset;
+  std::vector<std::uint32_t> owner_entry;
+  // Owner ranges for the force pass: thread t handles [thread_begin[t], thread_begin[t+1]),
+  // each boundary a multiple of kOwnerBlock (or the particle count).
   std::vector<std::uint32_t> thread_begin;
+  static constexpr std::uint32_t kOwnerBlock = 64;
 
   /// Sorts the particles by cell, rebuilds both lists and carries the contact history.
   /// history_saved: save_history() was called before the particles changed (removal),
   /// so the old lists no longer index them.
-  void rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid, double skin_m,
+  void rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid, const NeighborSkin& skin,
                int threads, bool history_saved = false);
 
-  /// True once some particle has moved more than half the skin since the last build,
-  /// or a particle and a wall may have closed the skin between them.
-  bool needs_rebuild(const ParticleStore& particles, const WallSet& walls, double skin_m, int threads) const;
-  /// The same decision when the caller already knows the largest particle displacement
-  /// since the build (the integrator measures it while it moves the particles).
-  bool needs_rebuild(std::size_t particle_count, double max_displacement_m, const WallSet& walls,
-                     double skin_m) const;
+  /// Splits the owners between threads by estimated work, at block boundaries (after a
+  /// build, or a restore for another thread count).
+  void split_owners(int threads);
+  /// Builds owner_offset/owner_entry from the pair list (after a build or a restore).
+  void index_partners(std::size_t particle_count);
+
+  /// True once some particle has moved more than its half of the skin since the last
+  /// build, or a wall more than its own half and what the particles have left.
+  bool needs_rebuild(const ParticleStore& particles, const WallSet& walls, int threads) const;
+  /// The same decision when the caller already knows the largest of |x_i - x_i,build|^2
+  /// over the particles' inverse squared halves (the integrator measures it while it
+  /// moves the particles).
+  bool needs_rebuild(std::size_t particle_count, double max_displacement_ratio2, const WallSet& walls) const;
   const std::vector<Vec3>& positions_at_build_m() const { return position_at_build_m_; }
+  /// 1 / h_i^2 of each particle at the last build.
+  const std::vector<double>& inverse_half_skin2() const { return inverse_half_skin2_; }
 
   std::size_t pair_count() const { return partner.size(); }
   /// For checkpoints: the positions at the last build and the build count, which the
   /// public arrays above do not hold.
-  void restore_build_state(std::vector<Vec3> positions_at_build_m, std::uint64_t rebuilds) {
-    position_at_build_m_ = std::move(positions_at_build_m);
-    rebuilds_ = rebuilds;
+  struct BuildState {
+    std::vector<Vec3> positions_m;
+    std::vector<double> half_skin_m;       // per particle
+    std::vector<double> body_half_skin_m;  // per wall body
+    double slow_half_skin_m = 0.0;         // skin/2
+    std::uint64_t rebuilds = 0;
+  };
+  BuildState build_state() const {
+    return {position_at_build_m_, half_skin_m_, body_half_skin_m_, slow_half_skin_m_, rebuilds_};
   }
+  void restore_build_state(BuildState state);
   std::uint64_t rebuild_count() const { return rebuilds_; }
   /// Keeps the contact history by global id (rebuild() does it itself unless told it
   /// was done before the particles changed).
@@ -87,7 +137,13 @@ class NeighborList {
   void restore_history(const ParticleStore& particles, int threads);
 
   std::vector<Vec3> position_at_build_m_;
+  std::vector<double> half_skin_m_, inverse_half_skin2_;  // per particle
+  std::vector<double> body_half_skin_m_;                  // per wall body
+  double slow_half_skin_m_ = 0.0;
   std::uint64_t rebuilds_ = 0;
+  // Pairs whose partner is fast, found before the owners' search: (owner, partner).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> fast_pairs_;
+  std::vector<std::uint32_t> fast_pair_offset_;
   // History saved by owner id across a rebuild (only entries with a non-zero spring).
   struct SavedContact {
     ParticleId partner_id;

@@ -5,8 +5,8 @@
 // particle-steps/s on one thread and 3.6e6 on two while another process held one of
 // the two cores (docs/benchmarks.md). So the default leaves out the cores other
 // runnable processes hold. An explicit --threads is never changed. The choice is made
-// once, at the start: a thread count changes results at round-off, and a run's results
-// must not change with the load during it.
+// once, at the start (results do not depend on the thread count; changing it during a
+// run is not done yet).
 #include <string>
 
 namespace regodem {

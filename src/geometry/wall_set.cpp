@@ -119,6 +119,16 @@ void WallSet::advance(double time_s, double dt_s) {
   }
 }
 
+std::vector<double> WallSet::surface_steps_m(double time_s, double dt_s) {
+  std::vector<double> steps(bodies.size(), 0.0);
+  for (std::uint32_t b = 0; b < bodies.size(); ++b) {
+    const WallMotion& motion = bodies[b].motion;
+    if (!motion.active_at(time_s) || !motion.moves()) continue;
+    steps[b] = dt_s * (norm(motion.velocity_m_per_s) + norm(motion.angular_velocity_rad_per_s) * spin_reach_m(b));
+  }
+  return steps;
+}
+
 double WallSet::max_displacement_since_build_m() const {
   double largest = 0.0;
   for (const WallBody& b : bodies) largest = std::max(largest, b.displacement_since_build_m);

@@ -64,6 +64,9 @@ class WallSet {
 
   /// Moves the walls whose motion is active during [time_s, time_s + dt_s).
   void advance(double time_s, double dt_s);
+  /// Per body: the largest distance a point of its surface moves in one step of dt_s
+  /// from time_s (feed plus spin times its meshes' reach from the axis; 0 at rest).
+  std::vector<double> surface_steps_m(double time_s, double dt_s);
   /// Largest wall translation since the neighbour list was built.
   double max_displacement_since_build_m() const;
   void mark_neighbor_build();

@@ -83,13 +83,7 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
   if (wall_thermal.empty()) wall_thermal.resize(n_bodies);
   if (wall_thermal.size() != n_bodies)
     throw InputError(fmt::format("{} wall thermal descriptions for {} walls", wall_thermal.size(), n_bodies));
-  spills_.resize(settings_.threads);
   mesh_scratch_.resize(settings_.threads);
-  wall_force_by_thread_.assign(settings_.threads, std::vector<Vec3>(n_bodies));
-  wall_torque_by_thread_.assign(settings_.threads, std::vector<Vec3>(n_bodies));
-  wall_conduction_by_thread_.assign(settings_.threads, std::vector<double>(n_bodies));
-  wall_friction_by_thread_.assign(settings_.threads, std::vector<double>(n_bodies));
-  friction_power_by_thread_.assign(settings_.threads, 0.0);
   wall_friction_power_W_.assign(n_bodies, 0.0);
   refresh_thermal_material_cache();
   for (ThermalWall& w : wall_thermal) {
@@ -120,30 +114,35 @@ void Simulation::rebuild_neighbors(bool history_saved) {
       static_cast<double>(grid_.cell_count()) < 0.25 * max_cells)
     grid_ = CellGrid(settings_.domain.min_m, settings_.domain.max_m,
                      2.0 * settings_.min_particle_radius_m + settings_.neighbor_skin_m, max_cells);
-  // Few particles per thread: fewer threads. Decided from the count alone, so a run
-  // stays deterministic for a given thread setting.
-  active_threads_ = static_cast<int>(std::clamp<std::size_t>(particles.size() / settings_.min_particles_per_thread, 1,
-                                                             static_cast<std::size_t>(settings_.threads)));
-  neighbors_.rebuild(particles, walls, grid_, settings_.neighbor_skin_m, active_threads_, history_saved);
+  active_threads_ = force_pass_threads();
+  NeighborSkin skin(settings_.neighbor_skin_m);
+  skin.time_step_s = settings_.time_step_s;
+  skin.body_step_m = walls.surface_steps_m(time_s_, settings_.time_step_s);
+  neighbors_.rebuild(particles, walls, grid_, skin, active_threads_, history_saved);
   walls.mark_neighbor_build();
   if (!bonds_.empty()) bonds_.refresh_indices(particles);  // the rebuild re-sorted the particles
 }
 
+int Simulation::force_pass_threads() const {
+  // Few particles per thread: fewer threads (the sums do not depend on how many).
+  return static_cast<int>(std::clamp<std::size_t>(particles.size() / settings_.min_particles_per_thread, 1,
+                                                  static_cast<std::size_t>(settings_.threads)));
+}
+
 void Simulation::ensure_forces() {
   if (forces_current_) return;
-  if (neighbors_.needs_rebuild(particles, walls, settings_.neighbor_skin_m, settings_.threads)) rebuild_neighbors();
+  if (neighbors_.needs_rebuild(particles, walls, settings_.threads)) rebuild_neighbors();
   compute_forces(0.0);
   forces_current_ = true;
 }
 
 void Simulation::step() {
   ensure_forces();
-  const double max_displacement = first_half_kick_and_drift();
+  const double max_displacement_ratio2 = first_half_kick_and_drift();
   walls.advance(time_s_, settings_.time_step_s);
   time_s_ += settings_.time_step_s;
   ++step_;
-  if (neighbors_.needs_rebuild(particles.size(), max_displacement, walls, settings_.neighbor_skin_m))
-    rebuild_neighbors();
+  if (neighbors_.needs_rebuild(particles.size(), max_displacement_ratio2, walls)) rebuild_neighbors();
   compute_forces(settings_.time_step_s);
   second_half_kick();
   if (heat_enabled()) update_temperatures(settings_.time_step_s);
@@ -158,26 +157,27 @@ double Simulation::first_half_kick_and_drift() {
   const std::size_t n = particles.size();
   const std::vector<Vec3>& at_build = neighbors_.positions_at_build_m();
   int escaped = 0;
-  double max_move2 = 0.0;
+  double max_ratio2 = 0.0;
   const HalfKick kick(particles, half_dt);
   Vec3* __restrict x = particles.position_m.data();
   const Vec3* __restrict v = particles.velocity_m_per_s.data();
   const Vec3* __restrict x_build = at_build.data();
+  const double* __restrict inv_half2 = neighbors_.inverse_half_skin2().data();
   const Domain domain = settings_.domain;
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) \
-    reduction(max : escaped, max_move2)
+    reduction(max : escaped, max_ratio2)
   for (std::size_t i = 0; i < n; ++i) {
     kick(i);
     x[i] += v[i] * dt;
     if (!domain.contains(x[i])) escaped = 1;  // also false for NaN
-    max_move2 = std::max(max_move2, norm2(x[i] - x_build[i]));
+    max_ratio2 = std::max(max_ratio2, norm2(x[i] - x_build[i]) * inv_half2[i]);
   }
   if (escaped) {
     if (settings_.lost_particles == LostParticles::stop) report_blow_up("left the domain", time_s_ + dt, step_ + 1);
     remove_lost_particles();
     return 0.0;  // the lists were just rebuilt
   }
-  return std::sqrt(max_move2);
+  return max_ratio2;
 }
 
 void Simulation::second_half_kick() {
@@ -323,6 +323,18 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const WallPrimitive* __restrict primitives = walls.primitives.data();
   const WallBody* __restrict bodies = walls.bodies.data();
   const std::uint32_t* thread_begin = neighbors_.thread_begin.data();
+  const std::uint32_t* __restrict owner_offset = neighbors_.owner_offset.data();
+  const std::uint32_t* __restrict owner_entry = neighbors_.owner_entry.data();
+  partner_share_.resize(neighbors_.partner.size());
+  partner_touching_.resize(neighbors_.partner.size());
+  PartnerShare* __restrict share = partner_share_.data();
+  std::uint8_t* __restrict touching = partner_touching_.data();
+  constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
+  const std::size_t blocks = (particles.size() + block_size - 1) / block_size;
+  block_wall_share_.resize(blocks * n_bodies);
+  block_friction_power_W_.resize(blocks);
+  WallShare* __restrict block_wall = block_wall_share_.data();
+  double* __restrict block_friction_power = block_friction_power_W_.data();
   const ContactParameterTable& table = contact_parameters_;
   const ConductionParameterTable& conduction = conduction_parameters_;
   const double* __restrict temperature = particles.temperature_K.data();
@@ -338,40 +350,31 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     wall_contact_heat_[b] = WallContactHeat::of(wall_thermal[b]);
   const WallContactHeat* wall_heat = wall_contact_heat_.data();
 
+  // Pass 1, each thread over its owners: every contact's action on the owner is summed
+  // here, its share for the partner written to the pair's entry, and wall sums go to
+  // the owner's block. Pass 2, after the barrier: each particle gathers its shares as a
+  // partner, in owner order. Nothing is summed in an order that depends on the thread
+  // count, so neither is the result (docs/architecture.md, "The step and threads").
 #pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
   {
     const int t = omp_get_thread_num();
     const std::uint32_t begin = thread_begin[t], end = thread_begin[t + 1];
-    for (std::uint32_t i = begin; i < end; ++i) {
-      force[i] = gravity * mass[i];
-      torque[i] = {};
-      own_spin[i] = 0.0;
-      if constexpr (Heat) heat[i] = 0.0;
+    // The thread's blocks (its range starts on a block boundary; an empty range has none).
+    for (std::size_t k = begin / block_size; begin < end && k < (end + block_size - 1) / block_size; ++k) {
+      std::fill(block_wall + k * n_bodies, block_wall + (k + 1) * n_bodies, WallShare{});
+      block_friction_power[k] = 0.0;
     }
-    std::vector<double>& wall_conduction = wall_conduction_by_thread_[t];
-    std::vector<double>& wall_friction = wall_friction_by_thread_[t];
-    double friction_power = 0.0;
-    if constexpr (Heat) {
-      std::fill(wall_conduction.begin(), wall_conduction.end(), 0.0);
-      std::fill(wall_friction.begin(), wall_friction.end(), 0.0);
-    }
-    std::vector<Spill>& spill = spills_[t];
-    spill.clear();
     MeshTouchFinder& finder = mesh_scratch_[t].finder;
     std::vector<MeshTouch>& touches = mesh_scratch_[t].touches;
     std::vector<char>& touched = mesh_scratch_[t].touched;
-    std::vector<Vec3>& wall_force = wall_force_by_thread_[t];
-    std::vector<Vec3>& wall_torque = wall_torque_by_thread_[t];
-    std::fill(wall_force.begin(), wall_force.end(), Vec3{});
-    std::fill(wall_torque.begin(), wall_torque.end(), Vec3{});
-#pragma omp barrier
 
     for (std::uint32_t i = begin; i < end; ++i) {
       const Vec3 xi = x[i], vi = v[i], wi = w[i];
       const double ri = radius[i], inv_mi = inv_mass[i], inv_ii = inv_inertia[i];
       const MaterialIndex mat_i = material[i];
-      Vec3 force_i, torque_i;
-      double own_spin_i = 0.0;
+      Vec3 force_i = gravity * mass[i], torque_i;
+      double own_spin_i = 0.0, friction_power = 0.0;
+      WallShare* __restrict wall_share = block_wall + (i / block_size) * n_bodies;
       double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
       if constexpr (Heat) {
         temperature_i = temperature[i];
@@ -388,6 +391,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           // Most list entries are not touching and already cleared: reading instead of
           // storing keeps their cache lines clean (no write-back).
           if (history[k] != Vec3{}) history[k] = {};
+          if (touching[k]) touching[k] = 0;
           continue;
         }
         ++particle_contacts;
@@ -432,14 +436,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             heat_j += 0.5 * f.sliding_power_W;
           }
         }
-        if (j >= begin && j < end) {
-          force[j] -= f.force_on_i_N;
-          torque[j] += torque_j;
-          own_spin[j] += f.own_spin_resistance_j_N_m;
-          if constexpr (Heat) heat[j] += heat_j;
-        } else {
-          spill.push_back({j, -f.force_on_i_N, torque_j, heat_j, f.own_spin_resistance_j_N_m});
-        }
+        share[k] = {-f.force_on_i_N, torque_j, heat_j, f.own_spin_resistance_j_N_m};
+        if (!touching[k]) touching[k] = 1;
       }
 
       // One particle-wall contact, analytic or mesh: R* = R_i, m* = m_i (DESIGN.md section 2).
@@ -469,13 +467,13 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
                                                          wh.contact_conductivity(conductivity_i), f.contact_radius_m) *
                              (wh.temperature_K - temperature_i);
             heat_i += q;
-            wall_conduction[body] -= q;
+            wall_share[body].conduction_W -= q;
           }
           if (friction_heating) {  // an adiabatic wall takes none of it
             const double share_i = wh.conducts ? wall_partition : 1.0;
             friction_power += f.sliding_power_W;
             heat_i += share_i * f.sliding_power_W;
-            wall_friction[body] += (1.0 - share_i) * f.sliding_power_W;
+            wall_share[body].friction_W += (1.0 - share_i) * f.sliding_power_W;
           }
         }
         force_i += f.force_on_i_N;
@@ -483,8 +481,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         // EDEM's own-spin rolling torque is not booked on the wall (its default: the wall
         // torque would depend on the mesh size); the relative-spin one is, as a reaction.
         own_spin_i += f.own_spin_resistance_i_N_m;
-        wall_force[body] -= f.force_on_i_N;
-        wall_torque[body] +=
+        wall_share[body].force_N -= f.force_on_i_N;
+        wall_share[body].torque_N_m +=
             cross(contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
       };
 
@@ -512,48 +510,53 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
                        spring[touch.entry]);
         });
       }
-      force[i] += force_i;
-      torque[i] += torque_i;
-      own_spin[i] += own_spin_i;
-      if constexpr (Heat) heat[i] += heat_i;
+      force[i] = force_i;
+      torque[i] = torque_i;
+      own_spin[i] = own_spin_i;
+      if constexpr (Heat) heat[i] = heat_i;
+      block_friction_power[i / block_size] += friction_power;
     }
-    friction_power_by_thread_[t] = friction_power;
 #pragma omp barrier
-    // Contributions to particles of other threads, applied by their owners in thread
-    // order: no races, and the sum order is fixed for a given thread count.
-    for (int s = 0; s < threads; ++s)
-      for (const Spill& e : spills_[s])
-        if (e.particle >= begin && e.particle < end) {
-          force[e.particle] += e.force_N;
-          torque[e.particle] += e.torque_N_m;
-          own_spin[e.particle] += e.own_spin_resistance_N_m;
-          if constexpr (Heat) heat[e.particle] += e.heat_W;
-        }
-    // EDEM's own-spin rolling, once each particle's resistance is summed (RollingOwnSpin).
-    for (std::uint32_t i = begin; i < end; ++i)
-      if (own_spin[i] > 0.0) torque[i] += RollingOwnSpin::torque(w[i], own_spin[i], inv_inertia[i], dt);
+    for (std::uint32_t j = begin; j < end; ++j) {
+      Vec3 force_j, torque_j;
+      double heat_j = 0.0, own_spin_j = 0.0;
+      for (std::uint32_t r = owner_offset[j]; r < owner_offset[j + 1]; ++r) {
+        const std::uint32_t k = owner_entry[r];
+        if (!touching[k]) continue;
+        force_j += share[k].force_N;
+        torque_j += share[k].torque_N_m;
+        own_spin_j += share[k].own_spin_resistance_N_m;
+        if constexpr (Heat) heat_j += share[k].heat_W;
+      }
+      force[j] += force_j;
+      torque[j] += torque_j;
+      own_spin[j] += own_spin_j;
+      if constexpr (Heat) heat[j] += heat_j;
+      // EDEM's own-spin rolling, once the particle's resistance is summed (RollingOwnSpin).
+      if (own_spin[j] > 0.0) torque[j] += RollingOwnSpin::torque(w[j], own_spin[j], inv_inertia[j], dt);
+    }
   }
 
+  // The walls' sums, block by block in order.
   for (std::size_t b = 0; b < n_bodies; ++b) {
-    walls.bodies[b].force_N = {};
-    walls.bodies[b].torque_N_m = {};
-    for (int t = 0; t < threads; ++t) {
-      walls.bodies[b].force_N += wall_force_by_thread_[t][b];
-      walls.bodies[b].torque_N_m += wall_torque_by_thread_[t][b];
+    WallShare sum;
+    for (std::size_t k = 0; k < blocks; ++k) {
+      const WallShare& part = block_wall[k * n_bodies + b];
+      sum.force_N += part.force_N;
+      sum.torque_N_m += part.torque_N_m;
+      sum.conduction_W += part.conduction_W;
+      sum.friction_W += part.friction_W;
     }
+    walls.bodies[b].force_N = sum.force_N;
+    walls.bodies[b].torque_N_m = sum.torque_N_m;
     if constexpr (Heat) {
-      double conducted = 0.0, friction = 0.0;
-      for (int t = 0; t < threads; ++t) {
-        conducted += wall_conduction_by_thread_[t][b];
-        friction += wall_friction_by_thread_[t][b];
-      }
-      wall_thermal[b].heat_flow_to_particles_W = -conducted;
-      wall_friction_power_W_[b] = friction;
+      wall_thermal[b].heat_flow_to_particles_W = -sum.conduction_W;
+      wall_friction_power_W_[b] = sum.friction_W;
     }
   }
   if constexpr (Heat) {
     friction_power_W_ = 0.0;
-    for (int t = 0; t < threads; ++t) friction_power_W_ += friction_power_by_thread_[t];
+    for (std::size_t k = 0; k < blocks; ++k) friction_power_W_ += block_friction_power[k];
   }
   stats_.particle_contacts = particle_contacts;
   stats_.wall_contacts = wall_contacts;

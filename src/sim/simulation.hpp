@@ -104,6 +104,9 @@ class Simulation {
   std::uint64_t step_count() const { return step_; }
   double time_step_s() const { return settings_.time_step_s; }
   int threads() const { return settings_.threads; }
+  /// Threads of the force pass for the current particle count: fewer than threads() when
+  /// there are fewer than settings().min_particles_per_thread each (results are the same).
+  int force_pass_threads() const;
   const SimulationSettings& settings() const { return settings_; }
   const ContactStatistics& contact_statistics() const { return stats_; }
   const NeighborList& neighbor_list() const { return neighbors_; }
@@ -159,11 +162,11 @@ class Simulation {
 
   // Checkpoints (simulation_checkpoint.cpp; docs/checkpoint-format.md): every piece of
   // state a step reads, the neighbour lists included, so that a restored simulation
-  // steps on bit for bit as the saved one does (same thread count).
+  // steps on bit for bit as the saved one does (on any thread count).
   void save_state(Checkpoint& checkpoint) const;
   /// Restores save_state() into a simulation built from the same scenario. Throws
   /// CheckpointError when the checkpoint does not fit it (other walls, particle fields).
-  /// With another thread count the neighbour lists are rebuilt (no longer bit for bit).
+  /// Another thread count goes on bit for bit (the owners are only split otherwise).
   void restore_state(const Checkpoint& checkpoint);
   /// A new run's start from another run's checkpoint: its particles, their temperatures,
   /// contact history between particles, and bonds (simulation_checkpoint.cpp).
@@ -188,7 +191,8 @@ class Simulation {
   void drop_particles(const std::vector<char>& flags);
   /// slip_time_s: dt after a step, 0 when re-evaluating an unchanged state.
   void compute_forces(double slip_time_s);
-  /// Returns the largest displacement since the last neighbour build.
+  /// Returns the largest squared displacement since the last neighbour build over the
+  /// particle's squared half of the skin (NeighborSkin; above 1: rebuild).
   double first_half_kick_and_drift();
   void second_half_kick();
   template <bool Heat>
@@ -215,13 +219,22 @@ class Simulation {
   int active_threads_ = 1;  // threads of the force pass, set at each neighbour build
   ContactStatistics stats_;
 
-  struct Spill {  // a contribution to a particle outside the thread's owner range
-    std::uint32_t particle;
+  // The force pass's fixed-order sums (compute_forces_and_heat): per pair entry, the
+  // contact's action on the partner (valid where partner_touching_ is 1), gathered by
+  // each partner in owner order; per block of owners and wall body, the walls' sums.
+  struct PartnerShare {
     Vec3 force_N, torque_N_m;
     double heat_W;
     double own_spin_resistance_N_m;
   };
-  std::vector<std::vector<Spill>> spills_;
+  std::vector<PartnerShare> partner_share_;
+  std::vector<std::uint8_t> partner_touching_;
+  struct WallShare {
+    Vec3 force_N, torque_N_m;
+    double conduction_W = 0.0, friction_W = 0.0;
+  };
+  std::vector<WallShare> block_wall_share_;  // blocks x wall bodies
+  std::vector<double> block_friction_power_W_;
   // Per particle, each contact pass: the summed own-spin rolling resistance (RollingOwnSpin).
   std::vector<double> own_spin_resistance_N_m_;
   struct MeshScratch {  // per thread
@@ -230,10 +243,6 @@ class Simulation {
     std::vector<char> touched;
   };
   std::vector<MeshScratch> mesh_scratch_;
-  std::vector<std::vector<Vec3>> wall_force_by_thread_, wall_torque_by_thread_;
-  // Heat into each wall body by conduction and by friction, per thread.
-  std::vector<std::vector<double>> wall_conduction_by_thread_, wall_friction_by_thread_;
-  std::vector<double> friction_power_by_thread_;
   std::vector<double> wall_friction_power_W_;  // summed over threads, last pass
   double friction_power_W_ = 0.0;              // all sliding contacts, last pass
   std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0

@@ -173,12 +173,28 @@ void save_neighbors(ByteWriter& w, const NeighborList& nl) {
   w.put_vector(nl.mesh_triangle);
   w.put_vector(nl.mesh_tangential_history_m);
   w.put_vector(nl.thread_begin);
-  w.put_vector(nl.positions_at_build_m());
-  w.put(nl.rebuild_count());
+  const NeighborList::BuildState build = nl.build_state();
+  w.put_vector(build.positions_m);
+  w.put_vector(build.half_skin_m);
+  w.put_vector(build.body_half_skin_m);
+  w.put(build.slow_half_skin_m);
+  w.put(build.rebuilds);
 }
 
-void load_neighbors(ByteReader& r, NeighborList& nl, std::size_t particles, std::size_t primitives,
-                    std::size_t meshes) {
+/// The layout version of a section (1 when absent: the reader reports it).
+std::uint32_t section_version(const Checkpoint& checkpoint, std::string_view tag) {
+  for (const CheckpointSection& s : checkpoint.sections())
+    if (s.tag == tag) return s.version;
+  return 1;
+}
+
+/// NBRS version 2 adds each particle's and wall body's half of the skin; a version 1
+/// section (before issue 18) restores without them, and the lists are built again at
+/// the next step.
+constexpr std::uint32_t kNeighborsVersion = 2;
+
+void load_neighbors(ByteReader& r, std::uint32_t version, NeighborList& nl, std::size_t particles,
+                    std::size_t primitives, std::size_t meshes) {
   r.get_vector(nl.offset);
   r.get_vector(nl.partner);
   r.get_vector(nl.tangential_history_m);
@@ -190,10 +206,20 @@ void load_neighbors(ByteReader& r, NeighborList& nl, std::size_t particles, std:
   r.get_vector(nl.mesh_triangle);
   r.get_vector(nl.mesh_tangential_history_m);
   r.get_vector(nl.thread_begin);
-  std::vector<Vec3> at_build;
-  r.get_vector(at_build);
-  const auto rebuilds = r.get<std::uint64_t>();
-  nl.restore_build_state(std::move(at_build), rebuilds);
+  NeighborList::BuildState build;
+  r.get_vector(build.positions_m);
+  if (version >= 2) {
+    r.get_vector(build.half_skin_m);
+    r.get_vector(build.body_half_skin_m);
+    r.get(build.slow_half_skin_m);
+  } else {
+    build.positions_m.clear();  // no build state: the lists are built again
+  }
+  r.get(build.rebuilds);
+  if (build.half_skin_m.size() != build.positions_m.size()) r.fail("holds neighbour skins of another particle count");
+  for (const double h : build.half_skin_m)
+    if (!(h > 0.0)) r.fail("holds a neighbour skin that is not positive");
+  nl.restore_build_state(std::move(build));
   // A list of another particle count, or pointing past the arrays, would be read out
   // of bounds by the force pass.
   const auto csr_fits = [&](const std::vector<std::uint32_t>& offset, std::size_t entries) {
@@ -265,7 +291,7 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
   {
     ByteWriter w;
     save_neighbors(w, neighbors_);
-    checkpoint.add(kNeighbors, 1, std::move(w));
+    checkpoint.add(kNeighbors, kNeighborsVersion, std::move(w));
   }
   {
     ByteWriter w;
@@ -412,8 +438,9 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     }
   }
   {
-    ByteReader r = checkpoint.reader(kNeighbors);
-    load_neighbors(r, neighbors_, n, walls.primitives.size(), walls.meshes.size());
+    ByteReader r = checkpoint.reader(kNeighbors, kNeighborsVersion);
+    load_neighbors(r, section_version(checkpoint, kNeighbors), neighbors_, n, walls.primitives.size(),
+                   walls.meshes.size());
   }
   {
     ByteReader r = checkpoint.reader(kBonds);
@@ -425,11 +452,13 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
         r.fail("has a bond to a particle that does not exist");
     bonds_.refresh_indices(particles);
   }
+  // The lists do not depend on the thread count, nor do the sums over them: another
+  // thread count only splits the owners otherwise, and the run goes on bit for bit.
+  neighbors_.index_partners(n);
+  if (neighbors_.positions_at_build_m().size() != n) forces_current_ = false;  // an older layout: build again
   if (saved_threads != settings_.threads) {
-    // Other owner ranges: rebuild the lists for this thread count (the contact history
-    // goes across by particle ids), and the force sums change order.
-    rebuild_neighbors();
-    forces_current_ = false;
+    active_threads_ = force_pass_threads();
+    neighbors_.split_owners(active_threads_);
   }
 }
 
@@ -458,9 +487,10 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
   }
   {
     // The particle pairs and their springs; wall entries belong to the other run's walls.
-    ByteReader r = checkpoint.reader(kNeighbors);
+    ByteReader r = checkpoint.reader(kNeighbors, kNeighborsVersion);
     NeighborList saved;
-    load_neighbors(r, saved, n, std::numeric_limits<std::size_t>::max(), std::numeric_limits<std::size_t>::max());
+    load_neighbors(r, section_version(checkpoint, kNeighbors), saved, n, std::numeric_limits<std::size_t>::max(),
+                   std::numeric_limits<std::size_t>::max());
     neighbors_ = NeighborList();
     neighbors_.offset = std::move(saved.offset);
     neighbors_.partner = std::move(saved.partner);

@@ -1,5 +1,6 @@
 // Neighbour lists: the half list holds exactly the pairs within R_i + R_j + skin (each
-// once) for a 4:1 size mixture, and the contact history follows the particle ids
+// once) for a 4:1 size mixture, also when fast particles have their own, larger share
+// of the skin (NeighborSkin), and the contact history follows the particle ids
 // through a rebuild that reorders the particles.
 #include <gtest/gtest.h>
 
@@ -55,6 +56,58 @@ TEST(NeighborList, HalfListHoldsExactlyThePairsWithinTheCutoff) {
   ASSERT_GT(expected.size(), 100u);
   EXPECT_EQ(found.size(), expected.size());  // no pair twice
   EXPECT_EQ(std::set<IdPair>(found.begin(), found.end()), expected);
+}
+
+// NeighborSkin: a particle's half is clamp(8 |v| dt, skin/2, 4 skin/2); a pair is listed
+// within R_i + R_j + h_i + h_j. Every tenth particle is fast (up to 8x the speed at which
+// 8 steps cover the slow half), so the fast ones' own search finds pairs of every kind:
+// fast-slow both ways round and fast-fast.
+TEST(NeighborList, FastParticlesReachAsFarAsTheirOwnHalfOfTheSkin) {
+  ParticleStore store = random_mixture(1500, 7);
+  const double skin = 0.06e-3, dt = 1e-6;
+  Rng rng(3);
+  for (std::size_t i = 0; i < store.size(); ++i)
+    if (i % 10 == 3) store.velocity_m_per_s[i] = {rng.uniform(-1, 1) * 8.0 * (0.5 * skin) / (8.0 * dt), 0.0, 0.0};
+  NeighborSkin policy(skin);
+  policy.time_step_s = dt;
+  policy.steps_ahead = 8.0;
+  policy.max_half_skin_factor = 4.0;
+  NeighborList list;
+  const CellGrid grid({0, 0, 0}, {0.01, 0.01, 0.01}, 0.6e-3 + skin, 1e6);
+  list.rebuild(store, WallSet{}, grid, policy, 2);
+
+  const auto half = [&](std::size_t i) {
+    return std::clamp(8.0 * norm(store.velocity_m_per_s[i]) * dt, 0.5 * skin, 2.0 * skin);
+  };
+  std::set<IdPair> expected;
+  std::size_t fast_pairs = 0;
+  for (std::size_t i = 0; i < store.size(); ++i) {
+    EXPECT_DOUBLE_EQ(list.inverse_half_skin2()[i], 1.0 / (half(i) * half(i))) << i;
+    for (std::size_t j = i + 1; j < store.size(); ++j) {
+      const double cutoff = store.radius_m[i] + store.radius_m[j] + half(i) + half(j);
+      if (norm2(store.position_m[i] - store.position_m[j]) < cutoff * cutoff) {
+        expected.insert(ordered(store.id[i], store.id[j]));
+        if (half(i) > 0.5 * skin || half(j) > 0.5 * skin) ++fast_pairs;
+      }
+    }
+  }
+  std::multiset<IdPair> found;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
+      const std::uint32_t j = list.partner[k];
+      EXPECT_TRUE(owns_pair(store.radius_m[i], store.id[i], store.radius_m[j], store.id[j]));
+      found.insert(ordered(store.id[i], store.id[j]));
+    }
+  ASSERT_GT(fast_pairs, 50u);
+  EXPECT_EQ(found.size(), expected.size());  // no pair twice
+  EXPECT_EQ(std::set<IdPair>(found.begin(), found.end()), expected);
+
+  // The lists hold until a particle has moved more than its own half.
+  const auto moved_ratio2 = [&](std::size_t i, double distance_m) { return distance_m * distance_m / (half(i) * half(i)); };
+  std::size_t fast = 0;
+  while (half(fast) <= 0.5 * skin) ++fast;
+  EXPECT_FALSE(list.needs_rebuild(store.size(), moved_ratio2(fast, 0.99 * half(fast)), WallSet{}));
+  EXPECT_TRUE(list.needs_rebuild(store.size(), moved_ratio2(fast, 1.01 * half(fast)), WallSet{}));
 }
 
 TEST(NeighborList, HistoryFollowsIdsThroughAReorderingRebuild) {

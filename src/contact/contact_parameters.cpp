@@ -28,6 +28,7 @@ ContactParameterTable::ContactParameterTable(const MaterialTable& materials)
       p.rolling_friction = pair.rolling_friction;
       p.rolling_model = pair.rolling_model;
       p.clamp_attractive_normal_force = pair.clamp_attractive_normal_force;
+      any_own_spin_ = any_own_spin_ || p.rolling_model == RollingModel::own_spin;
     }
   }
 }

@@ -28,9 +28,12 @@ class ContactParameterTable {
   const ContactPairParameters& operator()(MaterialIndex a, MaterialIndex b) const {
     return table_[a * n_ + b];
   }
+  /// Whether any pair rolls by EDEM's own-spin model (its resistance is summed per particle).
+  bool any_own_spin() const { return any_own_spin_; }
 
  private:
   std::size_t n_ = 0;
+  bool any_own_spin_ = false;
   std::vector<ContactPairParameters> table_;
 };
 

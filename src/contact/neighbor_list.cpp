@@ -92,26 +92,30 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
 
   // Counting sort of the particles by cell: afterwards each cell's particles are the
   // contiguous index range [cell_start_[c], cell_start_[c+1]).
+  const std::size_t cells = grid.cell_count();
   cell_of_particle_.resize(n);
-  cell_start_.assign(grid.cell_count() + 1, 0);
+  cell_start_.assign(cells + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     int ix, iy, iz;
     grid.coordinates(particles.position_m[i], ix, iy, iz);
     cell_of_particle_[i] = grid.index(ix, iy, iz);
     ++cell_start_[cell_of_particle_[i] + 1];
   }
-  for (std::size_t c = 0; c < grid.cell_count(); ++c) cell_start_[c + 1] += cell_start_[c];
+  for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   {
-    std::vector<std::uint32_t> order(n), fill(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) order[fill[cell_of_particle_[i]]++] = static_cast<std::uint32_t>(i);
-    // By id within a cell (cells hold a few particles: insertion sort), so that the
-    // order, and every sum over it, depends on the positions and ids alone, not on the
-    // order the particles had (a restore, another rank's insertions).
+    std::vector<std::uint32_t>& order = sort_order_;
+    order.resize(n);
+    sort_fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[sort_fill_[cell_of_particle_[i]]++] = static_cast<std::uint32_t>(i);
+    // By id within a cell (a cell holds a few particles: one insertion pass over the
+    // order), so that the order, and every sum over it, depends on the positions and
+    // ids alone, not on the order the particles had (a restore, another rank's
+    // insertions).
     const std::vector<ParticleId>& ids = particles.id;
-    for (std::size_t c = 0; c < grid.cell_count(); ++c)
-      for (std::uint32_t a = cell_start_[c] + 1; a < cell_start_[c + 1]; ++a)
-        for (std::uint32_t b = a; b > cell_start_[c] && ids[order[b - 1]] > ids[order[b]]; --b)
-          std::swap(order[b - 1], order[b]);
+    const auto same_cell = [&](std::uint32_t a, std::uint32_t b) { return cell_of_particle_[a] == cell_of_particle_[b]; };
+    for (std::size_t a = 1; a < n; ++a)
+      for (std::size_t b = a; b > 0 && same_cell(order[b - 1], order[b]) && ids[order[b - 1]] > ids[order[b]]; --b)
+        std::swap(order[b - 1], order[b]);
     particles.permute(order);
   }
 

@@ -157,6 +157,7 @@ class NeighborList {
   // Reused scratch space.
   std::vector<std::uint32_t> cell_start_;
   std::vector<std::uint32_t> cell_of_particle_;
+  std::vector<std::uint32_t> sort_order_, sort_fill_;
   std::vector<std::uint32_t> touching_;  // per owner: partners in contact at the build
   std::vector<std::vector<std::uint32_t>> thread_partners_;
   std::vector<std::vector<std::uint32_t>> thread_walls_;

@@ -325,9 +325,14 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const std::uint32_t* thread_begin = neighbors_.thread_begin.data();
   const std::uint32_t* __restrict owner_offset = neighbors_.owner_offset.data();
   const std::uint32_t* __restrict owner_entry = neighbors_.owner_entry.data();
+  const bool own_spin_rolling = contact_parameters_.any_own_spin();
   partner_share_.resize(neighbors_.partner.size());
   partner_touching_.resize(neighbors_.partner.size());
+  partner_heat_W_.resize(Heat ? neighbors_.partner.size() : 0);
+  partner_own_spin_N_m_.resize(own_spin_rolling ? neighbors_.partner.size() : 0);
   PartnerShare* __restrict share = partner_share_.data();
+  double* __restrict share_heat = partner_heat_W_.data();
+  double* __restrict share_own_spin = partner_own_spin_N_m_.data();
   std::uint8_t* __restrict touching = partner_touching_.data();
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
   const std::size_t blocks = (particles.size() + block_size - 1) / block_size;
@@ -436,7 +441,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             heat_j += 0.5 * f.sliding_power_W;
           }
         }
-        share[k] = {-f.force_on_i_N, torque_j, heat_j, f.own_spin_resistance_j_N_m};
+        share[k] = {-f.force_on_i_N, torque_j};
+        if constexpr (Heat) share_heat[k] = heat_j;
+        if (own_spin_rolling) share_own_spin[k] = f.own_spin_resistance_j_N_m;
         if (!touching[k]) touching[k] = 1;
       }
 
@@ -525,8 +532,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         if (!touching[k]) continue;
         force_j += share[k].force_N;
         torque_j += share[k].torque_N_m;
-        own_spin_j += share[k].own_spin_resistance_N_m;
-        if constexpr (Heat) heat_j += share[k].heat_W;
+        if (own_spin_rolling) own_spin_j += share_own_spin[k];
+        if constexpr (Heat) heat_j += share_heat[k];
       }
       force[j] += force_j;
       torque[j] += torque_j;

@@ -224,10 +224,9 @@ class Simulation {
   // each partner in owner order; per block of owners and wall body, the walls' sums.
   struct PartnerShare {
     Vec3 force_N, torque_N_m;
-    double heat_W;
-    double own_spin_resistance_N_m;
   };
   std::vector<PartnerShare> partner_share_;
+  std::vector<double> partner_heat_W_, partner_own_spin_N_m_;  // only with heat, own-spin rolling
   std::vector<std::uint8_t> partner_touching_;
   struct WallShare {
     Vec3 force_N, torque_N_m;

@@ -1,6 +1,8 @@
 #include "contact/bond_store.hpp"
 
+#include <algorithm>
 #include <limits>
+#include <utility>
 
 namespace regodem {
 namespace {
@@ -26,13 +28,27 @@ void BondStore::add(const ParticleStore& particles, std::uint32_t a, std::uint32
 
 void BondStore::refresh_indices(const ParticleStore& particles) {
   const std::size_t n = particles.size();
-  index_of_id_.assign(particles.next_id(), kNone);
-  for (std::size_t p = 0; p < n; ++p) index_of_id_[particles.id[p]] = static_cast<std::uint32_t>(p);
+  // (id, index) sorted by id: a look-up that grows with the particles, not the ids.
+  std::vector<std::pair<ParticleId, std::uint32_t>> by_id(n);
+  for (std::size_t p = 0; p < n; ++p) by_id[p] = {particles.id[p], static_cast<std::uint32_t>(p)};
+  std::sort(by_id.begin(), by_id.end());
+  const auto index_of = [&](ParticleId id) {
+    const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair<ParticleId, std::uint32_t>{id, 0});
+    return it != by_id.end() && it->first == id ? it->second : kNone;
+  };
   for (std::size_t b = 0; b < size(); ++b) {
-    local_i[b] = index_of_id_[id_i[b]];
-    local_j[b] = index_of_id_[id_j[b]];
+    local_i[b] = index_of(id_i[b]);
+    local_j[b] = index_of(id_j[b]);
   }
   rebuild_per_particle(n);
+}
+
+void BondStore::renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count) {
+  for (std::size_t b = 0; b < size(); ++b) {
+    local_i[b] = new_index_of_old[local_i[b]];
+    local_j[b] = new_index_of_old[local_j[b]];
+  }
+  rebuild_per_particle(particle_count);
 }
 
 void BondStore::remove_broken(const ParticleStore& particles) {

@@ -1,7 +1,8 @@
 #pragma once
 // The intact parallel bonds as a structure of arrays, keyed by global particle ids
 // (particles are re-sorted at every neighbour build), with the local index of each end
-// refreshed after each sort, and a per-particle index of its bonds (CSR) so that each
+// renumbered after each sort (no table sized by the ids), and a per-particle index of
+// its bonds (CSR) so that each
 // particle gathers its bonds' forces in a fixed order: parallel without races, and
 // deterministic for any thread count.
 #include <cstdint>
@@ -56,8 +57,11 @@ class BondStore {
   /// Appends an unloaded bond between local particles a and b (sizes the scratch fields).
   void add(const ParticleStore& particles, std::uint32_t a, std::uint32_t b, std::uint16_t bond_kind,
            const BondSection& bond_section);
-  /// Refreshes local indices from ids after the particles were reordered, and the CSR.
+  /// Finds the local indices from the ids (after a restore), and the CSR.
   void refresh_indices(const ParticleStore& particles);
+  /// The particles moved: the one at index p is now at new_index_of_old[p] (a sort, a
+  /// removal of particles without bonds). Updates the local indices and the CSR.
+  void renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count);
   /// Removes the bonds flagged broken (keeping the order of the rest) and refreshes the CSR.
   void remove_broken(const ParticleStore& particles);
   /// Removes the bonds with an end flagged in `removed` (by local index; the particles
@@ -66,7 +70,6 @@ class BondStore {
 
  private:
   void rebuild_per_particle(std::size_t particle_count);
-  std::vector<std::uint32_t> index_of_id_;  // by global id; kNone where absent
 };
 
 }  // namespace regodem

@@ -35,11 +35,10 @@ void CellGrid::coordinates(const Vec3& x, int& ix, int& iy, int& iz) const {
 
 void NeighborList::save_history(const ParticleStore& particles) {
   saved_.clear();
-  saved_begin_.assign(2 * static_cast<std::size_t>(particles.next_id()), 0);
   const std::size_t owners = offset.empty() ? 0 : offset.size() - 1;
+  saved_begin_.assign(owners + 1, 0);
   if (mesh_offset.size() != offset.size()) mesh_offset.assign(offset.size(), 0);
   for (std::size_t i = 0; i < owners; ++i) {
-    const std::size_t begin = saved_.size();
     for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k)
       if (norm2(tangential_history_m[k]) > 0.0)
         saved_.push_back({particles.id[partner[k]], kNoWall, tangential_history_m[k]});
@@ -49,10 +48,19 @@ void NeighborList::save_history(const ParticleStore& particles) {
     for (std::uint32_t k = mesh_offset[i]; k < mesh_offset[i + 1]; ++k)
       if (norm2(mesh_tangential_history_m[k]) > 0.0)
         saved_.push_back({mesh_triangle[k], kMeshWall + mesh_wall[k], mesh_tangential_history_m[k]});
-    const ParticleId owner = particles.id[i];
-    saved_begin_[2 * owner] = static_cast<std::uint32_t>(begin);
-    saved_begin_[2 * owner + 1] = static_cast<std::uint32_t>(saved_.size());
+    saved_begin_[i + 1] = static_cast<std::uint32_t>(saved_.size());
   }
+  // Until the particles change, each is its own saved owner (particles inserted since
+  // the last build have indices past the saved ones).
+  saved_owner_of_.resize(owners);
+  for (std::size_t i = 0; i < owners; ++i) saved_owner_of_[i] = static_cast<std::uint32_t>(i);
+}
+
+void NeighborList::history_follows_removal(const std::vector<char>& removed) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < saved_owner_of_.size(); ++i)
+    if (i >= removed.size() || !removed[i]) saved_owner_of_[kept++] = saved_owner_of_[i];
+  saved_owner_of_.resize(kept);
 }
 
 void NeighborList::restore_history(const ParticleStore& particles, int threads) {
@@ -61,11 +69,13 @@ void NeighborList::restore_history(const ParticleStore& particles, int threads) 
   wall_tangential_history_m.assign(wall_primitive.size(), Vec3{});
   mesh_tangential_history_m.assign(mesh_triangle.size(), Vec3{});
   if (saved_.empty()) return;
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 #pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
-    const ParticleId owner = particles.id[i];
-    if (2 * static_cast<std::size_t>(owner) + 1 >= saved_begin_.size()) continue;  // inserted since
-    const std::uint32_t begin = saved_begin_[2 * owner], end = saved_begin_[2 * owner + 1];
+    const std::uint32_t before_sort = sort_order_[i];
+    const std::uint32_t owner = before_sort < saved_owner_of_.size() ? saved_owner_of_[before_sort] : kNone;
+    if (owner == kNone) continue;  // inserted since
+    const std::uint32_t begin = saved_begin_[owner], end = saved_begin_[owner + 1];
     for (std::uint32_t s = begin; s < end; ++s) {
       const SavedContact& c = saved_[s];
       if (c.wall == kNoWall) {

@@ -7,7 +7,8 @@
 // for the smallest particles and a 4:1 size mixture costs no more than it must.
 // Rebuilding sorts the particles by cell, and by id within a cell (cache locality, and
 // an order that depends on the positions and ids alone), and carries the contact
-// history (the tangential spring) across, keyed by global particle ids.
+// history (the tangential spring) across, by owner index (followed through the sort)
+// and partner id.
 //
 // The force pass is the same for any thread count: each contact's share for the
 // partner is written to its entry, and each particle then gathers them over its
@@ -129,9 +130,14 @@ class NeighborList {
   }
   void restore_build_state(BuildState state);
   std::uint64_t rebuild_count() const { return rebuilds_; }
-  /// Keeps the contact history by global id (rebuild() does it itself unless told it
-  /// was done before the particles changed).
+  /// Keeps the contact history of every owner, by its index now and its partners' ids
+  /// (rebuild() does it itself unless told it was done before the particles changed).
   void save_history(const ParticleStore& particles);
+  /// After save_history(): the flagged particles are about to be removed (the rest keep
+  /// their order), so the saved owners are found again at their new indices.
+  void history_follows_removal(const std::vector<char>& removed);
+  /// The last build's sort: the particle now at index i was at index sort_order()[i].
+  const std::vector<std::uint32_t>& sort_order() const { return sort_order_; }
 
  private:
   void restore_history(const ParticleStore& particles, int threads);
@@ -144,7 +150,9 @@ class NeighborList {
   // Pairs whose partner is fast, found before the owners' search: (owner, partner).
   std::vector<std::pair<std::uint32_t, std::uint32_t>> fast_pairs_;
   std::vector<std::uint32_t> fast_pair_offset_;
-  // History saved by owner id across a rebuild (only entries with a non-zero spring).
+  // History saved across a rebuild (only entries with a non-zero spring), by owner index
+  // at the save; saved_owner_of_[p]: the saved owner of the particle at index p before
+  // the build's sort (kNone: none, inserted since). Nothing here is sized by the ids.
   struct SavedContact {
     ParticleId partner_id;
     std::uint32_t wall;  // primitive index, kNoWall for a particle partner, kMeshWall + mesh
@@ -152,7 +160,8 @@ class NeighborList {
   };
   static constexpr std::uint32_t kNoWall = 0xFFFFFFFFu;
   static constexpr std::uint32_t kMeshWall = 0x80000000u;
-  std::vector<std::uint32_t> saved_begin_;  // by owner id; size next_id + 1
+  std::vector<std::uint32_t> saved_begin_;  // CSR over the saved owners
+  std::vector<std::uint32_t> saved_owner_of_;
   std::vector<SavedContact> saved_;
   // Reused scratch space.
   std::vector<std::uint32_t> cell_start_;

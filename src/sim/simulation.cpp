@@ -120,7 +120,12 @@ void Simulation::rebuild_neighbors(bool history_saved) {
   skin.body_step_m = walls.surface_steps_m(time_s_, settings_.time_step_s);
   neighbors_.rebuild(particles, walls, grid_, skin, active_threads_, history_saved);
   walls.mark_neighbor_build();
-  if (!bonds_.empty()) bonds_.refresh_indices(particles);  // the rebuild re-sorted the particles
+  if (!bonds_.empty()) {  // the rebuild re-sorted the particles
+    const std::vector<std::uint32_t>& order = neighbors_.sort_order();
+    std::vector<std::uint32_t> new_index_of_old(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) new_index_of_old[order[i]] = static_cast<std::uint32_t>(i);
+    bonds_.renumber(new_index_of_old, particles.size());
+  }
 }
 
 int Simulation::force_pass_threads() const {
@@ -224,10 +229,19 @@ void Simulation::remove_lost_particles() {
 }
 
 void Simulation::drop_particles(const std::vector<char>& flags) {
-  // Contact history is kept by global id; the bonds of a removed particle go with it
-  // (not counted as broken: nothing failed in them).
+  // Contact history is kept by owner, found again past the removal; the bonds of a
+  // removed particle go with it (not counted as broken: nothing failed in them).
   neighbors_.save_history(particles);
-  if (!bonds_.empty()) bonds_.remove_with_particles(particles, flags);
+  neighbors_.history_follows_removal(flags);
+  if (!bonds_.empty()) {
+    bonds_.remove_with_particles(particles, flags);
+    constexpr std::uint32_t kGone = 0xFFFFFFFFu;  // no bond is left on a removed particle
+    std::vector<std::uint32_t> new_index_of_old(particles.size(), kGone);
+    std::uint32_t kept = 0;
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      if (!flags[i]) new_index_of_old[i] = kept++;
+    bonds_.renumber(new_index_of_old, kept);
+  }
   particles.remove_if(flags);
   rebuild_neighbors(true);
 }

@@ -447,10 +447,9 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     load_bonds(r, bonds_, bond_counts_, bond_breaks_);
     for (std::uint16_t k : bonds_.kind)
       if (k >= bond_kinds_.size()) r.fail(fmt::format("has a bond of kind {}, the scenario {} kinds", k, bond_kinds_.size()));
-    for (std::size_t b = 0; b < bonds_.size(); ++b)
-      if (bonds_.id_i[b] >= particles.next_id() || bonds_.id_j[b] >= particles.next_id())
-        r.fail("has a bond to a particle that does not exist");
     bonds_.refresh_indices(particles);
+    for (std::size_t b = 0; b < bonds_.size(); ++b)
+      if (bonds_.local_i[b] >= n || bonds_.local_j[b] >= n) r.fail("has a bond to a particle that does not exist");
   }
   // The lists do not depend on the thread count, nor do the sums over them: another
   // thread count only splits the owners otherwise, and the run goes on bit for bit.
@@ -512,8 +511,11 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
     bond_counts_ = {};
     bond_counts_.formed = bonds_.size();
     for (std::size_t b = 0; b < bonds_.size(); ++b) bonds_.broken[b] = 0;
+    bonds_.refresh_indices(particles);  // the saved order, which the rebuild then sorts
+    for (std::size_t b = 0; b < bonds_.size(); ++b)
+      if (bonds_.local_i[b] >= n || bonds_.local_j[b] >= n) r.fail("has a bond to a particle that does not exist");
   }
-  // Sorts the particles and carries the springs over by particle ids; refreshes the bonds.
+  // Sorts the particles and carries the springs over; renumbers the bonds.
   rebuild_neighbors();
   forces_current_ = false;
 }

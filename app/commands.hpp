@@ -32,7 +32,7 @@ struct RunOptions {
 /// `regodem resume` (command_resume.cpp).
 struct ResumeOptions {
   std::string run_directory;
-  int threads = 0;  // 0: the run's own (the same thread count continues bit for bit)
+  int threads = 0;  // 0: the run's own (any thread count continues bit for bit)
   double checkpoint_every_s = 0.0;
 };
 

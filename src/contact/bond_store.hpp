@@ -65,7 +65,7 @@ class BondStore {
   /// Removes the bonds flagged broken (keeping the order of the rest) and refreshes the CSR.
   void remove_broken(const ParticleStore& particles);
   /// Removes the bonds with an end flagged in `removed` (by local index; the particles
-  /// are about to be removed). Call refresh_indices() after the particles went.
+  /// are about to be removed), then renumber() for the indices past the removal.
   void remove_with_particles(const ParticleStore& particles, const std::vector<char>& removed);
 
  private:

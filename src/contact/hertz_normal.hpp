@@ -11,8 +11,12 @@ struct HertzNormal {
     double normal_stiffness_N_per_m;  // S_n
     double contact_radius_m;          // a = sqrt(R* delta)
   };
+  /// a = sqrt(R* delta): the contact radius of the force law, which conduction uses.
+  static double contact_radius_m(double effective_radius_m, double overlap_m) {
+    return std::sqrt(effective_radius_m * overlap_m);
+  }
   static Result evaluate(double effective_youngs_Pa, double effective_radius_m, double overlap_m) {
-    const double a = std::sqrt(effective_radius_m * overlap_m);
+    const double a = contact_radius_m(effective_radius_m, overlap_m);
     return {4.0 / 3.0 * effective_youngs_Pa * a * overlap_m, 2.0 * effective_youngs_Pa * a, a};
   }
 };

@@ -3,8 +3,9 @@
 //
 // The pair list is a half list in CSR form: each pair is stored once, by its owner,
 // the larger particle (the lower id between equals). A particle then searches only
-// for partners no larger than itself, within 2R + skin, so the grid cells can be sized
-// for the smallest particles and a 4:1 size mixture costs no more than it must.
+// for slow partners no larger than itself, within 2R + h_i + skin/2 (fast partners find
+// their owners; NeighborSkin), so the grid cells can be sized for the smallest
+// particles and a 4:1 size mixture costs no more than it must.
 // Rebuilding sorts the particles by cell, and by id within a cell (cache locality, and
 // an order that depends on the positions and ids alone), and carries the contact
 // history (the tangential spring) across, by owner index (followed through the sort)

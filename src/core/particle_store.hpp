@@ -1,8 +1,9 @@
 #pragma once
 // Particle data as a structure of arrays: one contiguous array per field, so the force
-// and integration loops stream through only what they use. Every field is listed once
-// in for_each_field(); resize, permutation (spatial sorting) and removal are driven by
-// that list, so a field added there is carried everywhere.
+// and integration loops stream through only what they use. Every field is listed once,
+// with its name, unit and role in a distributed run, in for_each_described_field();
+// resize, permutation (spatial sorting), removal and checkpoints are driven by that
+// list, so a field added there is carried everywhere.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -24,6 +25,18 @@ struct NewParticle {
   MaterialIndex material = 0;
   RegionTag region = 0;
   double temperature_K = 0.0;
+};
+
+/// What the field table says of a field.
+struct ParticleField {
+  const char* name;
+  const char* unit;  // "-": none
+  // Travels with a particle that moves to another rank's domain: everything but what the
+  // next force pass computes afresh (force, torque, heat flow).
+  bool migrates;
+  // Copied to the ghost images of a particle near another rank's domain: what a contact
+  // with it reads.
+  bool ghosts_need;
 };
 
 class ParticleStore {
@@ -50,13 +63,32 @@ class ParticleStore {
   std::vector<double> peak_temperature_K;
   std::vector<double> time_above_threshold_s;
 
-  /// Calls f(vector&) for every per-particle field: the one list of fields.
+  /// Calls f(const ParticleField&, vector&) for every per-particle field: the one list
+  /// of fields (the field table).
+  template <class F>
+  void for_each_described_field(F&& f) {
+    f(ParticleField{"id", "-", true, true}, id);
+    f(ParticleField{"radius", "m", true, true}, radius_m);
+    f(ParticleField{"mass", "kg", true, false}, mass_kg);
+    f(ParticleField{"inverse_mass", "1/kg", true, true}, inv_mass_per_kg);
+    f(ParticleField{"inverse_inertia", "1/(kg m^2)", true, true}, inv_inertia);
+    f(ParticleField{"position", "m", true, true}, position_m);
+    f(ParticleField{"velocity", "m/s", true, true}, velocity_m_per_s);
+    f(ParticleField{"angular_velocity", "rad/s", true, true}, angular_velocity_rad_per_s);
+    f(ParticleField{"force", "N", false, false}, force_N);
+    f(ParticleField{"torque", "N m", false, false}, torque_N_m);
+    f(ParticleField{"material", "-", true, true}, material);
+    f(ParticleField{"region", "-", true, false}, region);
+    f(ParticleField{"temperature", "K", true, true}, temperature_K);
+    f(ParticleField{"heat_flow", "W", false, false}, heat_flow_W);
+    f(ParticleField{"conductivity", "W/(m K)", true, true}, conductivity_W_per_mK);
+    f(ParticleField{"peak_temperature", "K", true, false}, peak_temperature_K);
+    f(ParticleField{"time_above_threshold", "s", true, false}, time_above_threshold_s);
+  }
+  /// Calls f(vector&) for every per-particle field.
   template <class F>
   void for_each_field(F&& f) {
-    f(id); f(radius_m); f(mass_kg); f(inv_mass_per_kg); f(inv_inertia);
-    f(position_m); f(velocity_m_per_s); f(angular_velocity_rad_per_s); f(force_N); f(torque_N_m);
-    f(material); f(region); f(temperature_K); f(heat_flow_W); f(conductivity_W_per_mK);
-    f(peak_temperature_K); f(time_above_threshold_s);
+    for_each_described_field([&](const ParticleField&, auto& field) { f(field); });
   }
 
   std::size_t size() const { return id.size(); }

@@ -83,6 +83,8 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
   if (wall_thermal.empty()) wall_thermal.resize(n_bodies);
   if (wall_thermal.size() != n_bodies)
     throw InputError(fmt::format("{} wall thermal descriptions for {} walls", wall_thermal.size(), n_bodies));
+  if (!(settings_.neighbor_skin_m > 0.0))
+    throw InputError(fmt::format("the neighbour skin must be positive, got {} m", settings_.neighbor_skin_m));
   mesh_scratch_.resize(settings_.threads);
   wall_friction_power_W_.assign(n_bodies, 0.0);
   refresh_thermal_material_cache();
@@ -442,7 +444,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
         double heat_j = 0.0;
         if constexpr (Heat) {
-          // Paper Eq. 1: Q_ij = G (T_j - T_i), G = 2 k_c a (or another law, per pair).
+          // Q_ij = G (T_j - T_i), G from contact_conductance_W_per_K (another law per pair).
           const ConductionPairParameters& pair_heat = conduction(mat_i, mat_j);
           const double conductance = contact_conductance_W_per_K(
               pair_heat, pair_heat.pair_conductivity(conductivity_i, conductivity[j]), f.contact_radius_m);

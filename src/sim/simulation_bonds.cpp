@@ -136,7 +136,7 @@ void Simulation::apply_bonds(double dt_s) {
   const double* __restrict temperature = particles.temperature_K.data();
   const double* __restrict conductivity = particles.conductivity_W_per_mK.data();
   const bool heat = heat_enabled();
-  const double heat_scale = settings_.heat.time_scale_factor;
+  const ConductionPairParameters bond_conduction = geometric_radius_conduction(settings_.heat.time_scale_factor);
   int any_broken = 0;
 
 #pragma omp parallel for schedule(static) num_threads(threads) if (nb > 2048) reduction(max : any_broken)
@@ -163,10 +163,10 @@ void Simulation::apply_bonds(double dt_s) {
       a = {};  // gone for good: it acts no more, from this step on
       any_broken = 1;
     } else if (heat && p.conducts_heat) {
-      // The bond radius as a contact radius: G = 2 k_c R_b S (paper Eq. 1 with a = R_b).
-      const double ki = conductivity[i], kj = conductivity[j];
-      const double k_c = ki + kj > 0.0 ? 2.0 * ki * kj / (ki + kj) : 0.0;
-      q = 2.0 * k_c * section.radius_m * heat_scale * (temperature[j] - temperature[i]);
+      // The bond radius as a contact radius: G = 2 k_c R_b S.
+      q = contact_conductance_W_per_K(bond_conduction, harmonic_mean(conductivity[i], conductivity[j]),
+                                      section.radius_m) *
+          (temperature[j] - temperature[i]);
     }
     bonds_.action[b] = a;
     bonds_.heat_to_i_W[b] = q;

@@ -193,7 +193,9 @@ std::uint32_t section_version(const Checkpoint& checkpoint, std::string_view tag
 /// the next step.
 constexpr std::uint32_t kNeighborsVersion = 2;
 
-void load_neighbors(ByteReader& r, std::uint32_t version, NeighborList& nl, std::size_t particles,
+/// skin_m, bodies: a version 1 list was built with every half at skin/2.
+void load_neighbors(ByteReader& r, std::uint32_t version, double skin_m, std::size_t bodies, NeighborList& nl,
+                    std::size_t particles,
                     std::size_t primitives, std::size_t meshes) {
   r.get_vector(nl.offset);
   r.get_vector(nl.partner);
@@ -213,7 +215,10 @@ void load_neighbors(ByteReader& r, std::uint32_t version, NeighborList& nl, std:
     r.get_vector(build.body_half_skin_m);
     r.get(build.slow_half_skin_m);
   } else {
-    build.positions_m.clear();  // no build state: the lists are built again
+    // Built by the uniform rule, which is the present one with every half at skin/2.
+    build.half_skin_m.assign(build.positions_m.size(), 0.5 * skin_m);
+    build.body_half_skin_m.assign(bodies, 0.5 * skin_m);
+    build.slow_half_skin_m = 0.5 * skin_m;
   }
   r.get(build.rebuilds);
   if (build.half_skin_m.size() != build.positions_m.size()) r.fail("holds neighbour skins of another particle count");
@@ -439,7 +444,8 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
   }
   {
     ByteReader r = checkpoint.reader(kNeighbors, kNeighborsVersion);
-    load_neighbors(r, section_version(checkpoint, kNeighbors), neighbors_, n, walls.primitives.size(),
+    load_neighbors(r, section_version(checkpoint, kNeighbors), settings_.neighbor_skin_m, walls.bodies.size(),
+                   neighbors_, n, walls.primitives.size(),
                    walls.meshes.size());
   }
   {
@@ -453,12 +459,11 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
   }
   // The lists do not depend on the thread count, nor do the sums over them: another
   // thread count only splits the owners otherwise, and the run goes on bit for bit.
+  // The owners are split again whatever was saved (the split never changes a result,
+  // and a split off the block boundaries would race on the wall sums).
   neighbors_.index_partners(n);
-  if (neighbors_.positions_at_build_m().size() != n) forces_current_ = false;  // an older layout: build again
-  if (saved_threads != settings_.threads) {
-    active_threads_ = force_pass_threads();
-    neighbors_.split_owners(active_threads_);
-  }
+  active_threads_ = force_pass_threads();
+  neighbors_.split_owners(active_threads_);
 }
 
 void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved,
@@ -488,7 +493,8 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
     // The particle pairs and their springs; wall entries belong to the other run's walls.
     ByteReader r = checkpoint.reader(kNeighbors, kNeighborsVersion);
     NeighborList saved;
-    load_neighbors(r, section_version(checkpoint, kNeighbors), saved, n, std::numeric_limits<std::size_t>::max(),
+    load_neighbors(r, section_version(checkpoint, kNeighbors), settings_.neighbor_skin_m, walls.bodies.size(), saved,
+                   n, std::numeric_limits<std::size_t>::max(),
                    std::numeric_limits<std::size_t>::max());
     neighbors_ = NeighborList();
     neighbors_.offset = std::move(saved.offset);

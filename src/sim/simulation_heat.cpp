@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "contact/hertz_normal.hpp"
 #include "core/error.hpp"
 #include "measure/thermal_history.hpp"
 #include "sim/simulation.hpp"
@@ -127,7 +128,7 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
       const double rj = particles.radius_m[j];
       const double overlap = ri + rj - norm(particles.position_m[j] - particles.position_m[i]);
       if (overlap <= 0.0) continue;
-      const double a = std::sqrt(ri * rj / (ri + rj) * overlap);
+      const double a = HertzNormal::contact_radius_m(ri * rj / (ri + rj), overlap);
       const ConductionPairParameters& pair_heat = conduction_parameters_(mi, particles.material[j]);
       const double g = contact_conductance_W_per_K(
           pair_heat, pair_heat.pair_conductivity(ki, particles.conductivity_W_per_mK[j]), a);
@@ -136,7 +137,7 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
     const auto link_wall = [&](double distance_m, MaterialIndex wall_material, std::uint32_t body) {
       const WallContactHeat wh = WallContactHeat::of(wall_thermal[body]);
       if (!wh.conducts) return;
-      const double a = std::sqrt(ri * (ri - distance_m));
+      const double a = HertzNormal::contact_radius_m(ri, ri - distance_m);
       const double g =
           contact_conductance_W_per_K(conduction_parameters_(mi, wall_material), wh.contact_conductivity(ki), a);
       if (g <= 0.0) return;

@@ -16,6 +16,9 @@
 
 namespace regodem {
 
+/// k_c of two particles: the harmonic mean (k itself for one material; 0 when both are 0).
+inline double harmonic_mean(double k_i, double k_j) { return k_i + k_j > 0.0 ? 2.0 * k_i * k_j / (k_i + k_j) : 0.0; }
+
 struct ConductionPairParameters {
   double radius_factor = 0.0;  // multiplies k_c a
   double area_factor = 0.0;    // W/(m^2 K): multiplies a^2
@@ -25,20 +28,26 @@ struct ConductionPairParameters {
   double constant_pair_conductivity_W_per_mK = -1.0;
 
   [[gnu::always_inline]] double pair_conductivity(double k_i, double k_j) const {
-    return constant_pair_conductivity_W_per_mK >= 0.0 ? constant_pair_conductivity_W_per_mK
-                                                        : 2.0 * k_i * k_j / (k_i + k_j);
+    return constant_pair_conductivity_W_per_mK >= 0.0 ? constant_pair_conductivity_W_per_mK : harmonic_mean(k_i, k_j);
   }
 };
 
-/// Conductance of one contact (W/K); a from the Hertz overlap.
+/// Paper Eq. 1: the conductance of one contact (W/K), G = 2 k_c a with the pair's
+/// factors (above); a the force law's contact radius. Every conducting contact, bond
+/// and the frozen network of a static bed take their G from here.
 [[gnu::always_inline]] inline double contact_conductance_W_per_K(const ConductionPairParameters& p,
                                                                  double conductivity_W_per_mK,
                                                                  double contact_radius_m) {
   return contact_radius_m * (p.radius_factor * conductivity_W_per_mK + p.area_factor * contact_radius_m);
 }
 
-/// k_c of two particles: the harmonic mean (k itself for one material).
-inline double harmonic_mean(double k_i, double k_j) { return 2.0 * k_i * k_j / (k_i + k_j); }
+/// The radius law's factors, G = 2 S k_c a, for a contact whose radius is geometric
+/// (a bond's R_b), not the Hertz one the force law gives.
+inline ConductionPairParameters geometric_radius_conduction(double time_scale_factor) {
+  ConductionPairParameters p;
+  p.radius_factor = 2.0 * time_scale_factor;
+  return p;
+}
 
 /// Square table over material indices, built from the pair properties and the time-scale factor.
 class ConductionParameterTable {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "thermal/conduction_parameters.hpp"
 #include "thermal/time_table.hpp"
 
 namespace regodem {
@@ -48,7 +49,7 @@ struct WallContactHeat {
   /// lambda_w), the particle's when the wall gives none (the paper's k_s), or the mean.
   double contact_conductivity(double k_particle) const {
     if (conductivity < 0.0) return k_particle;
-    return harmonic ? 2.0 * conductivity * k_particle / (conductivity + k_particle) : conductivity;
+    return harmonic ? harmonic_mean(conductivity, k_particle) : conductivity;
   }
 };
 

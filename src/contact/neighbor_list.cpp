@@ -154,11 +154,24 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   for (std::size_t b = 0; b < walls.bodies.size() && b < skin.body_step_m.size(); ++b)
     body_half_skin_m_[b] = half_for(skin.body_step_m[b]);
 
-  const double cell = grid.cell_size_m;
   const auto& x = particles.position_m;
   const auto& radius = particles.radius_m;
   const auto& id = particles.id;
   const std::vector<double>& half = half_skin_m_;
+  // Calls visit(j) for every particle j in the cells within reach_m of the point (the
+  // grid's sorted order: contiguous runs of cells along x).
+  const auto for_each_particle_near = [&](const CellGrid& g, const Vec3& point, double reach_m, auto&& visit) {
+    const int reach = static_cast<int>(std::ceil(reach_m / g.cell_size_m));
+    int cx, cy, cz;
+    g.coordinates(point, cx, cy, cz);
+    for (int iz = std::max(0, cz - reach); iz <= std::min(g.nz - 1, cz + reach); ++iz)
+      for (int iy = std::max(0, cy - reach); iy <= std::min(g.ny - 1, cy + reach); ++iy) {
+        const std::uint32_t row = g.index(0, iy, iz);
+        const std::uint32_t c0 = row + static_cast<std::uint32_t>(std::max(0, cx - reach));
+        const std::uint32_t c1 = row + static_cast<std::uint32_t>(std::min(g.nx - 1, cx + reach));
+        for (std::uint32_t j = cell_start_[c0]; j < cell_start_[c1 + 1]; ++j) visit(j);
+      }
+  };
   // Whether the segment between two particles crosses one of the thin walls (a sieve):
   // two particles that can touch through a wall before the next rebuild are both within
   // reach of it, so it is among either one's thin walls.
@@ -184,20 +197,12 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     std::vector<std::uint32_t> thin_walls;
     for (const std::uint32_t f : fast) {
       thin_walls_of(f, thin_walls);
-      const int reach = static_cast<int>(std::ceil((radius[f] + largest_radius + half[f] + largest_fast_half) / cell));
-      int cx, cy, cz;
-      grid.coordinates(x[f], cx, cy, cz);
-      for (int iz = std::max(0, cz - reach); iz <= std::min(grid.nz - 1, cz + reach); ++iz)
-        for (int iy = std::max(0, cy - reach); iy <= std::min(grid.ny - 1, cy + reach); ++iy) {
-          const std::uint32_t row = grid.index(0, iy, iz);
-          const std::uint32_t c0 = row + static_cast<std::uint32_t>(std::max(0, cx - reach));
-          const std::uint32_t c1 = row + static_cast<std::uint32_t>(std::min(grid.nx - 1, cx + reach));
-          for (std::uint32_t k = cell_start_[c0]; k < cell_start_[c1 + 1]; ++k) {
-            if (k == f || !owns_pair(radius[k], id[k], radius[f], id[f])) continue;
-            const double cutoff = radius[k] + radius[f] + half[k] + half[f];
-            if (norm2(x[k] - x[f]) < cutoff * cutoff && !blocked_by(thin_walls, f, k)) fast_pairs_.emplace_back(k, f);
-          }
-        }
+      const double reach_m = radius[f] + largest_radius + half[f] + largest_fast_half;
+      for_each_particle_near(grid, x[f], reach_m, [&](std::uint32_t k) {
+        if (k == f || !owns_pair(radius[k], id[k], radius[f], id[f])) return;
+        const double cutoff = radius[k] + radius[f] + half[k] + half[f];
+        if (norm2(x[k] - x[f]) < cutoff * cutoff && !blocked_by(thin_walls, f, k)) fast_pairs_.emplace_back(k, f);
+      });
     }
     std::sort(fast_pairs_.begin(), fast_pairs_.end());
     fast_pair_offset_.assign(n + 1, 0);
@@ -263,21 +268,12 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
       mesh_offset[i + 1] = static_cast<std::uint32_t>(mesh_triangles.size() - first_mesh_entry);
 
       // Slow partners no larger than the owner, within R_i + R_j + h_i + skin/2.
-      const int reach = static_cast<int>(std::ceil((2.0 * ri + hi + slow_half) / cell));
-      int cx, cy, cz;
-      grid.coordinates(x[i], cx, cy, cz);
       const std::size_t first = partners.size();
-      for (int iz = std::max(0, cz - reach); iz <= std::min(grid.nz - 1, cz + reach); ++iz)
-        for (int iy = std::max(0, cy - reach); iy <= std::min(grid.ny - 1, cy + reach); ++iy) {
-          const std::uint32_t row = grid.index(0, iy, iz);
-          const std::uint32_t c0 = row + static_cast<std::uint32_t>(std::max(0, cx - reach));
-          const std::uint32_t c1 = row + static_cast<std::uint32_t>(std::min(grid.nx - 1, cx + reach));
-          for (std::uint32_t j = cell_start_[c0]; j < cell_start_[c1 + 1]; ++j) {
-            if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j])) continue;
-            const double cutoff = ri + radius[j] + hi + slow_half;
-            if (norm2(x[j] - x[i]) < cutoff * cutoff && !blocked_by(thin_walls, i, j)) partners.push_back(j);
-          }
-        }
+      for_each_particle_near(grid, x[i], 2.0 * ri + hi + slow_half, [&](std::uint32_t j) {
+        if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j])) return;
+        const double cutoff = ri + radius[j] + hi + slow_half;
+        if (norm2(x[j] - x[i]) < cutoff * cutoff && !blocked_by(thin_walls, i, j)) partners.push_back(j);
+      });
       // And the fast ones found above.
       for (std::uint32_t e = fast_pair_offset_[i]; e < fast_pair_offset_[i + 1]; ++e)
         partners.push_back(fast_pairs_[e].second);

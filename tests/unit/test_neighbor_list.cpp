@@ -32,6 +32,19 @@ using IdPair = std::pair<ParticleId, ParticleId>;
 
 IdPair ordered(ParticleId a, ParticleId b) { return {std::min(a, b), std::max(a, b)}; }
 
+/// Every pair of the list by ids (a pair listed twice is there twice); each must be
+/// listed by its owner.
+std::multiset<IdPair> listed_pairs(const ParticleStore& store, const NeighborList& list) {
+  std::multiset<IdPair> found;
+  for (std::size_t i = 0; i < store.size(); ++i)
+    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
+      const std::uint32_t j = list.partner[k];
+      EXPECT_TRUE(owns_pair(store.radius_m[i], store.id[i], store.radius_m[j], store.id[j]));
+      found.insert(ordered(store.id[i], store.id[j]));
+    }
+  return found;
+}
+
 TEST(NeighborList, HalfListHoldsExactlyThePairsWithinTheCutoff) {
   ParticleStore store = random_mixture(1500, 5);
   const double skin = 0.06e-3;
@@ -46,13 +59,7 @@ TEST(NeighborList, HalfListHoldsExactlyThePairsWithinTheCutoff) {
       if (norm2(store.position_m[i] - store.position_m[j]) < cutoff * cutoff)
         expected.insert(ordered(store.id[i], store.id[j]));
     }
-  std::multiset<IdPair> found;
-  for (std::size_t i = 0; i < store.size(); ++i)
-    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
-      const std::uint32_t j = list.partner[k];
-      EXPECT_TRUE(owns_pair(store.radius_m[i], store.id[i], store.radius_m[j], store.id[j]));
-      found.insert(ordered(store.id[i], store.id[j]));
-    }
+  const std::multiset<IdPair> found = listed_pairs(store, list);
   ASSERT_GT(expected.size(), 100u);
   EXPECT_EQ(found.size(), expected.size());  // no pair twice
   EXPECT_EQ(std::set<IdPair>(found.begin(), found.end()), expected);
@@ -91,13 +98,7 @@ TEST(NeighborList, FastParticlesReachAsFarAsTheirOwnHalfOfTheSkin) {
       }
     }
   }
-  std::multiset<IdPair> found;
-  for (std::size_t i = 0; i < store.size(); ++i)
-    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
-      const std::uint32_t j = list.partner[k];
-      EXPECT_TRUE(owns_pair(store.radius_m[i], store.id[i], store.radius_m[j], store.id[j]));
-      found.insert(ordered(store.id[i], store.id[j]));
-    }
+  const std::multiset<IdPair> found = listed_pairs(store, list);
   ASSERT_GT(fast_pairs, 50u);
   EXPECT_EQ(found.size(), expected.size());  // no pair twice
   EXPECT_EQ(std::set<IdPair>(found.begin(), found.end()), expected);

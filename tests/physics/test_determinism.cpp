@@ -1,7 +1,7 @@
-// Results are deterministic for a fixed seed and thread count: two runs of the same
-// collapsing, rotating, wall-bounded packing on two threads (force and heat sums split
-// between threads and merged in a fixed order) are bit-for-bit identical, positions and
-// temperatures (heat on, friction heating on, a lumped cup).
+// Results are deterministic for a fixed seed: two runs of the same collapsing, rotating,
+// wall-bounded packing on two threads are bit-for-bit identical, positions and
+// temperatures (heat on, friction heating on, a lumped cup). Other thread counts giving
+// the same run: ThreadCount.* in test_checkpoint_restart.cpp.
 #include <gtest/gtest.h>
 
 #include "core/rng.hpp"

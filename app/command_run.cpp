@@ -189,7 +189,8 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   summary.scenario_copy = scenario_copy_file;
   summary.overrides = options.overrides;
   const HeatSettings& heat = prepared.simulation().settings().heat;
-  summary.heat = {heat.enabled, heat.time_scale_factor, heat.friction_heating, heat.friction_partition};
+  summary.heat = {heat.enabled, heat.time_scale_factor, heat.friction_heating, to_string(heat.partition),
+                  heat.friction_partition};
   const Simulation& sim = prepared.simulation();
   if (sim.bonds_configured()) {
     const BondCounts bonds = sim.bond_counts();  // the simulation's, whether the run ended or threw

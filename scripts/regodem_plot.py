@@ -305,7 +305,7 @@ def plot_wall_temperatures(runs, out_dir, written):
 
 
 def plot_energy_balance(runs, out_dir, written):
-    have = runs_with(runs, "time", "thermal_energy", "boundary_heat_in", "friction_heat", "energy_imbalance")
+    have = runs_with(runs, "time", "thermal_energy", "boundary_heat_in", "generated_heat", "energy_imbalance")
     if not have:
         return "energy balance (no run has heat on)"
     fig, (top, bottom) = new_figure(2)
@@ -315,7 +315,7 @@ def plot_energy_balance(runs, out_dir, written):
         t = s.column(time_name)
         energy = s.column("thermal_energy")
         top.plot(t, energy - energy[0], color=colour, label=f"{run.label}: change of thermal energy")
-        top.plot(t, s.column("boundary_heat_in") + s.column("friction_heat"), color=colour, linestyle="--",
+        top.plot(t, s.column("boundary_heat_in") + s.column("generated_heat"), color=colour, linestyle="--",
                  label=f"{run.label}: heat in (fixed walls + friction)")
         bottom.plot(t, s.column("energy_imbalance"), color=colour, label=run.label)
         mark_stages(top, s, time_name)

@@ -42,6 +42,15 @@ BondSection BondSection::of_radius(double radius_m) {
   return s;
 }
 
+double bond_elastic_energy_J(const BondParameters& p, const BondSection& section, const BondLoads& loads) {
+  const double kn_area = p.normal_stiffness_Pa_per_m * section.area_m2;
+  const double ks_area = p.shear_stiffness_Pa_per_m * section.area_m2;
+  const double kt = p.shear_stiffness_Pa_per_m * section.polar_inertia_m4;
+  const double kb = p.normal_stiffness_Pa_per_m * section.inertia_m4;
+  return 0.5 * (loads.normal_force_N * loads.normal_force_N / kn_area + norm2(loads.shear_force_N) / ks_area +
+                loads.twist_moment_N_m * loads.twist_moment_N_m / kt + norm2(loads.bend_moment_N_m) / kb);
+}
+
 BondStresses bond_stresses(const BondLoads& loads, const BondSection& section) {
   // Potyondy & Cundall (2004) Eq. 12: the bond is a beam of circular section.
   BondStresses s;
@@ -166,14 +175,19 @@ BondAction update_bond(const BondParameters& p, const BondSection& section, doub
   // 4. Forces, with the optional viscous damping of each component.
   double normal_force = loads.normal_force_N, twist = loads.twist_moment_N_m;
   Vec3 shear_force = loads.shear_force_N, bend_moment = loads.bend_moment_N_m;
+  BondAction out;
   if (p.damping_ratio > 0.0) {
     const double c = 2.0 * p.damping_ratio;
-    normal_force += c * std::sqrt(kn_area * effective_mass_kg) * normal_speed;
-    shear_force += shear_velocity * (c * std::sqrt(ks_area * effective_mass_kg));
-    twist += c * std::sqrt(kt * effective_inertia_kg_m2) * twist_rate;
-    bend_moment += bend_rate * (c * std::sqrt(kb * effective_inertia_kg_m2));
+    const double c_normal = c * std::sqrt(kn_area * effective_mass_kg), c_shear = c * std::sqrt(ks_area * effective_mass_kg);
+    const double c_twist = c * std::sqrt(kt * effective_inertia_kg_m2), c_bend = c * std::sqrt(kb * effective_inertia_kg_m2);
+    normal_force += c_normal * normal_speed;
+    shear_force += shear_velocity * c_shear;
+    twist += c_twist * twist_rate;
+    bend_moment += bend_rate * c_bend;
+    // Each damper opposes its own rate, and takes c rate^2 from the motion.
+    out.loss_W = c_normal * normal_speed * normal_speed + c_shear * norm2(shear_velocity) +
+                 c_twist * twist_rate * twist_rate + c_bend * norm2(bend_rate);
   }
-  BondAction out;
   out.force_on_i_N = n * normal_force + shear_force;
   const Vec3 lever = cross(n, shear_force);
   out.torque_on_i_N_m = n * twist + bend_moment + lever * arm_i;

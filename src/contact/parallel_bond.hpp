@@ -103,7 +103,14 @@ struct BondAction {
   Vec3 force_on_i_N;
   Vec3 torque_on_i_N_m;
   Vec3 torque_on_j_N_m;
+  // What the bond's damping takes from the pair's motion (c v^2 per component; 0 without
+  // damping), or, in the step it breaks, its stored energy over the step.
+  double loss_W = 0.0;
 };
+
+/// The elastic energy a bond's loads store: F_n^2/(2 k_n A) + |F_s|^2/(2 k_s A) +
+/// M_t^2/(2 k_s J) + |M_b|^2/(2 k_n I), what it releases on breaking.
+double bond_elastic_energy_J(const BondParameters& p, const BondSection& section, const BondLoads& loads);
 
 /// One step of a bond: turns the stored loads with the pair (the mean spin of the two
 /// particles, then the remaining change of the normal), adds the increments of the

@@ -37,8 +37,10 @@ struct HeatSummary {
   bool enabled = false;
   double time_scale_factor = 1.0;
   bool friction_heating = false;
+  std::string heat_partition = "fixed";
   double friction_partition = 0.5;
 };
+
 
 /// Parallel bonds of the run (present when the scenario has a `bonds` section).
 struct BondSummary {

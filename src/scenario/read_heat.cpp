@@ -21,7 +21,7 @@ void read_heat(const YamlSection& root, ScenarioReferences& references, Scenario
   spec.heat.enabled = true;
   const auto section = value->section();
   if (!section) return;
-  section->allow_only({"enabled", "time_scale_factor", "friction_heating", "friction_partition"});
+  section->allow_only({"enabled", "time_scale_factor", "friction_heating", "heat_partition", "friction_partition"});
   HeatSpec& heat = spec.heat;
   heat.where = value->where();
   // The section's presence turns heat on; `enabled: false` keeps the settings but
@@ -32,6 +32,8 @@ void read_heat(const YamlSection& root, ScenarioReferences& references, Scenario
                             Presence::optional, is_positive, "be greater than 0")
           .value_or(heat.time_scale_factor);
   heat.friction_heating = section->boolean("friction_heating").value_or(false);
+  if (const auto partition = section->get("heat_partition"))
+    heat.heat_partition = partition->choice({"equal", "fixed", "conductivity", "effusivity"}).value_or(heat.heat_partition);
   heat.friction_partition =
       read_checked_quantity(*section, "friction_partition", Dimension::dimensionless,
                             Presence::optional, is_partition, "lie between 0 and 1")
@@ -59,6 +61,27 @@ void check_heat_requirements(const ScenarioSpec& spec, const ScenarioReferences&
     diagnostics.error(material.where,
                       fmt::format("heat is on, so the particle material '{}' needs {}", material.name,
                                   missing));
+  }
+  // A partition by conductivity or effusivity weighs the wall too: a wall that takes heat
+  // (fixed or lumped) needs the properties of its material (its own conductivity will do).
+  const std::string& partition = spec.heat.heat_partition;
+  if (!spec.heat.friction_heating || (partition != "conductivity" && partition != "effusivity"))
+    return;
+  for (const WallSpec& wall : spec.walls) {
+    if (wall.thermal.mode == WallThermalModeSpec::adiabatic) continue;
+    const std::string material_name = wall.material.empty() && !spec.insertions.empty() ? spec.insertions.front().material
+                                                                                          : wall.material;
+    for (const MaterialSpec& material : spec.materials) {
+      if (material.name != material_name) continue;
+      std::string missing;
+      if (!material.conductivity_W_per_mK && !wall.thermal.conductivity_W_per_mK) missing = "'conductivity'";
+      if (partition == "effusivity" && !material.specific_heat_J_per_kgK)
+        missing += fmt::format("{}'specific_heat'", missing.empty() ? "" : " and ");
+      if (missing.empty()) continue;
+      diagnostics.error(wall.where, fmt::format("heat.heat_partition: {} weighs the wall '{}' by its material '{}', "
+                                                "which needs {}",
+                                                partition, wall.name, material.name, missing));
+    }
   }
 }
 

@@ -34,6 +34,14 @@ struct PreparedRun::Impl {
 
 namespace {
 
+/// The reader has checked the name.
+HeatPartitionModel heat_partition_model(const std::string& name) {
+  if (name == "equal") return HeatPartitionModel::equal;
+  if (name == "conductivity") return HeatPartitionModel::conductivity;
+  if (name == "effusivity") return HeatPartitionModel::effusivity;
+  return HeatPartitionModel::fixed;
+}
+
 [[noreturn]] void fail(const SourceLocation& where, const std::string& message) {
   throw InputError(fmt::format("{}: {}", where.describe(), message));
 }
@@ -711,10 +719,15 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   fill_pair_table(materials, spec, particle_material);
 
   if (spec.heat.enabled) {
-    lines.push_back(fmt::format("heat: on, time-scale factor S = {:.4g}, friction heating {}", spec.heat.time_scale_factor,
-                                spec.heat.friction_heating
-                                    ? fmt::format("on ({:.3g} of it to the particle)", spec.heat.friction_partition)
-                                    : std::string("off")));
+    const std::string partition =
+        spec.heat.heat_partition == "fixed"
+            ? fmt::format("{:.3g} of it to the particle at a wall, half each between particles", spec.heat.friction_partition)
+            : spec.heat.heat_partition == "equal" ? std::string("half to each body")
+                                                  : fmt::format("shared by {}", spec.heat.heat_partition);
+    lines.push_back(fmt::format("heat: on, time-scale factor S = {:.4g}, heat generated at contacts: {}",
+                                spec.heat.time_scale_factor,
+                                spec.heat.friction_heating ? fmt::format("the sliding power ({})", partition)
+                                                           : std::string("none")));
     for (std::size_t i = 0; i < materials.size(); ++i) {
       if (!particle_material[i]) continue;
       const Material& m = materials[static_cast<MaterialIndex>(i)];
@@ -845,6 +858,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   settings.heat.time_scale_factor = spec.heat.time_scale_factor;
   settings.heat.friction_heating = spec.heat.friction_heating;
   settings.heat.friction_partition = spec.heat.friction_partition;
+  settings.heat.partition = heat_partition_model(spec.heat.heat_partition);
   settings.heat.track_thermal_history = spec.heat.enabled && spec.measurements.thermal_history;
   settings.heat.thermal_history_threshold_K = spec.measurements.thermal_history_threshold_K;
   impl.simulation =

@@ -282,8 +282,9 @@ struct StageSpec {
 struct HeatSpec {
   bool enabled = false;               // true when the section is present, unless `enabled: false`
   double time_scale_factor = 1.0;     // S: every conductance is multiplied by it
-  bool friction_heating = false;
-  double friction_partition = 0.5;    // share of friction heat to the first body (a particle)
+  bool friction_heating = false;      // the sliding power heats the two bodies
+  std::string heat_partition = "fixed";  // equal | fixed | conductivity | effusivity
+  double friction_partition = 0.5;    // `fixed`: the particle's share at a wall
   SourceLocation where;
 };
 

@@ -86,7 +86,9 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
   if (!(settings_.neighbor_skin_m > 0.0))
     throw InputError(fmt::format("the neighbour skin must be positive, got {} m", settings_.neighbor_skin_m));
   mesh_scratch_.resize(settings_.threads);
-  wall_friction_power_W_.assign(n_bodies, 0.0);
+  wall_generated_heat_W_.assign(n_bodies, 0.0);
+  wall_power_W_.assign(n_bodies, 0.0);
+  audit_.wall_work_by_body_J.assign(n_bodies, 0.0);
   refresh_thermal_material_cache();
   for (ThermalWall& w : wall_thermal) {
     if (w.mode == WallThermalMode::fixed) w.temperature_K = w.prescribed_temperature_K.at(0.0);
@@ -98,6 +100,7 @@ void Simulation::add_particle(const NewParticle& p) {
   const std::size_t i = particles.add(p);
   particles.conductivity_W_per_mK[i] = materials[p.material].conductivity_W_per_mK.at(p.temperature_K);
   if (heat_enabled()) ledger_.reference_energy_J += particle_thermal_energy_J(i);
+  audit_.exchanged_J += particle_mechanical_energy_J(i);
   forces_current_ = false;
 }
 
@@ -139,7 +142,11 @@ int Simulation::force_pass_threads() const {
 void Simulation::ensure_forces() {
   if (forces_current_) return;
   if (neighbors_.needs_rebuild(particles, walls, settings_.threads)) rebuild_neighbors();
+  // What changed the state without a step (an insertion, a removal, new contact
+  // properties) also changed the springs' energy: the audit books it as exchanged.
+  const double springs_before_J = contact_elastic_energy_J_;
   compute_forces(0.0);
+  audit_.exchanged_J += contact_elastic_energy_J_ - springs_before_J;
   forces_current_ = true;
 }
 
@@ -152,7 +159,36 @@ void Simulation::step() {
   if (neighbors_.needs_rebuild(particles.size(), max_displacement_ratio2, walls)) rebuild_neighbors();
   compute_forces(settings_.time_step_s);
   second_half_kick();
+  book_mechanical_energy(settings_.time_step_s);
   if (heat_enabled()) update_temperatures(settings_.time_step_s);
+}
+
+void Simulation::book_mechanical_energy(double dt_s) {
+  for (std::size_t b = 0; b < wall_power_W_.size(); ++b) {
+    audit_.wall_work_by_body_J[b] += wall_power_W_[b] * dt_s;
+    audit_.wall_work_J += wall_power_W_[b] * dt_s;
+  }
+  audit_.dissipated_J += dissipated_power_W_ * dt_s;
+  audit_.stiffening_J += stiffening_power_W_ * dt_s;
+  if (audit_awaits_contact_elastic_) {
+    audit_.exchanged_J += contact_elastic_energy_J_;
+    audit_awaits_contact_elastic_ = false;
+  }
+}
+
+double Simulation::particle_mechanical_energy_J(std::size_t i) const {
+  double e = -particles.mass_kg[i] * dot(settings_.gravity_m_per_s2, particles.position_m[i]);
+  if (particles.inv_mass_per_kg[i] > 0.0) e += 0.5 * particles.mass_kg[i] * norm2(particles.velocity_m_per_s[i]);
+  if (particles.inv_inertia[i] > 0.0)
+    e += 0.5 * norm2(particles.angular_velocity_rad_per_s[i]) / particles.inv_inertia[i];
+  return e;
+}
+
+double Simulation::elastic_energy_J() const { return contact_elastic_energy_J_ + bond_elastic_energy_J(); }
+
+double Simulation::mechanical_energy_J() const {
+  return translational_kinetic_energy_J() + rotational_kinetic_energy_J() + gravitational_potential_energy_J() +
+         elastic_energy_J();
 }
 
 void Simulation::advance(std::uint64_t steps) {
@@ -217,8 +253,10 @@ void Simulation::remove_lost_particles() {
     if (settings_.domain.contains(x)) continue;
     lost[i] = 1;
     ++count;
-    // Its heat leaves with it: the ledger's reference drops as insertion raised it.
+    // Its heat leaves with it: the ledger's reference drops as insertion raised it; so
+    // does its motion, from the audit.
     if (heat_enabled()) ledger_.reference_energy_J -= particle_thermal_energy_J(i);
+    audit_.exchanged_J -= particle_mechanical_energy_J(i);
     spdlog::debug("particle {} left the domain at ({:.4g}, {:.4g}, {:.4g}) m at {:.3g} m/s: removed", particles.id[i],
                   x.x, x.y, x.z, norm(v));
   }
@@ -236,7 +274,9 @@ void Simulation::drop_particles(const std::vector<char>& flags) {
   neighbors_.save_history(particles);
   neighbors_.history_follows_removal(flags);
   if (!bonds_.empty()) {
+    const double bonds_before_J = bond_elastic_energy_J();
     bonds_.remove_with_particles(particles, flags);
+    audit_.exchanged_J -= bonds_before_J - bond_elastic_energy_J();  // what the removed bonds stored
     constexpr std::uint32_t kGone = 0xFFFFFFFFu;  // no bond is left on a removed particle
     std::vector<std::uint32_t> new_index_of_old(particles.size(), kGone);
     std::uint32_t kept = 0;
@@ -250,9 +290,11 @@ void Simulation::drop_particles(const std::vector<char>& flags) {
 
 void Simulation::remove_particles(const std::vector<char>& remove_flag) {
   if (std::find(remove_flag.begin(), remove_flag.end(), 1) == remove_flag.end()) return;
-  if (heat_enabled())
-    for (std::size_t i = 0; i < particles.size(); ++i)
-      if (remove_flag[i]) ledger_.reference_energy_J -= particle_thermal_energy_J(i);
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (!remove_flag[i]) continue;
+    if (heat_enabled()) ledger_.reference_energy_J -= particle_thermal_energy_J(i);
+    audit_.exchanged_J -= particle_mechanical_energy_J(i);
+  }
   drop_particles(remove_flag);
   forces_current_ = false;
 }
@@ -304,6 +346,14 @@ void Simulation::compute_forces(double slip_time_s) {
   else
     compute_forces_and_heat<false>(slip_time_s);
   if (!bonds_.empty()) apply_bonds(slip_time_s);
+  // The losses and stored energy of contacts and bonds, block by block in order.
+  generated_heat_W_ = dissipated_power_W_ = contact_elastic_energy_J_ = stiffening_power_W_ = 0.0;
+  for (const BlockEnergy& e : block_energy_) {
+    generated_heat_W_ += e.generated_heat_W;
+    dissipated_power_W_ += e.dissipated_W;
+    contact_elastic_energy_J_ += e.elastic_J;
+    stiffening_power_W_ += e.stiffening_W;
+  }
 }
 
 template <bool Heat>
@@ -353,9 +403,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
   const std::size_t blocks = (particles.size() + block_size - 1) / block_size;
   block_wall_share_.resize(blocks * n_bodies);
-  block_friction_power_W_.resize(blocks);
+  block_energy_.resize(blocks);
   WallShare* __restrict block_wall = block_wall_share_.data();
-  double* __restrict block_friction_power = block_friction_power_W_.data();
+  BlockEnergy* __restrict block_energy = block_energy_.data();
   const ContactParameterTable& table = contact_parameters_;
   const ConductionParameterTable& conduction = conduction_parameters_;
   const double* __restrict temperature = particles.temperature_K.data();
@@ -363,8 +413,26 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   double* __restrict heat = particles.heat_flow_W.data();
   own_spin_resistance_N_m_.resize(particles.size());
   double* __restrict own_spin = own_spin_resistance_N_m_.data();
-  const bool friction_heating = settings_.heat.friction_heating;
-  const double wall_partition = settings_.heat.friction_partition;  // the particle's share at a wall
+  // Heat from the contacts' losses (docs/physics.md, "Heat from dissipation"): the sliding
+  // power, or every loss; shared by the partition model.
+  const bool generate = Heat && settings_.heat.generates_heat();
+  const bool all_losses = settings_.heat.dissipation_heating;
+  const HeatPartitionModel partition = settings_.heat.partition;
+  const double fixed_wall_share = settings_.heat.friction_partition;
+  const bool audit = settings_.energy_audit || (Heat && all_losses);
+  const bool weighted = generate && (partition == HeatPartitionModel::conductivity ||
+                                     partition == HeatPartitionModel::effusivity);
+  if (weighted) fill_partition_weights();
+  const double* __restrict weight = partition_weight_.data();
+  // The particle's share of a wall contact's heat (an adiabatic wall takes none).
+  const auto wall_share_of_particle = [&](const WallContactHeat& wh, double weight_i, MaterialIndex wall_material) {
+    if (!wh.conducts) return 1.0;
+    switch (partition) {
+      case HeatPartitionModel::fixed: return fixed_wall_share;
+      case HeatPartitionModel::equal: return 0.5;
+      default: return heat_share_of_first(weight_i, wall_partition_weight(wh, wall_material));
+    }
+  };
   // Taken once per pass into a member buffer: no allocation per step.
   wall_contact_heat_.resize(Heat ? n_bodies : 0);
   for (std::size_t b = 0; b < wall_contact_heat_.size(); ++b)
@@ -383,7 +451,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     // The thread's blocks (its range starts on a block boundary; an empty range has none).
     for (std::size_t k = begin / block_size; begin < end && k < (end + block_size - 1) / block_size; ++k) {
       std::fill(block_wall + k * n_bodies, block_wall + (k + 1) * n_bodies, WallShare{});
-      block_friction_power[k] = 0.0;
+      block_energy[k] = BlockEnergy{};
     }
     MeshTouchFinder& finder = mesh_scratch_[t].finder;
     std::vector<MeshTouch>& touches = mesh_scratch_[t].touches;
@@ -394,7 +462,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       const double ri = radius[i], inv_mi = inv_mass[i], inv_ii = inv_inertia[i];
       const MaterialIndex mat_i = material[i];
       Vec3 force_i = gravity * mass[i], torque_i;
-      double own_spin_i = 0.0, friction_power = 0.0;
+      double own_spin_i = 0.0, generated_i = 0.0, dissipated_i = 0.0, elastic_i = 0.0, stiffening_i = 0.0;
       WallShare* __restrict wall_share = block_wall + (i / block_size) * n_bodies;
       double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
       if constexpr (Heat) {
@@ -441,6 +509,11 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         force_i += f.force_on_i_N;
         torque_i += lever * arm_i + f.rolling_torque_on_i_N_m;
         own_spin_i += f.own_spin_resistance_i_N_m;
+        if (audit) {
+          dissipated_i += f.dissipated_power_W;
+          elastic_i += f.elastic_energy_J;
+          stiffening_i += f.stiffening_power_W;
+        }
         const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
         double heat_j = 0.0;
         if constexpr (Heat) {
@@ -451,10 +524,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           const double q = conductance * (temperature[j] - temperature_i);
           heat_i += q;
           heat_j = -q;
-          if (friction_heating) {  // two particles share the sliding power equally
-            friction_power += f.sliding_power_W;
-            heat_i += 0.5 * f.sliding_power_W;
-            heat_j += 0.5 * f.sliding_power_W;
+          if (generate) {
+            const double generated = all_losses ? f.dissipated_power_W : f.sliding_power_W;
+            const double share_i = weighted ? heat_share_of_first(weight[i], weight[j]) : 0.5;
+            generated_i += generated;
+            heat_i += share_i * generated;
+            heat_j += (1.0 - share_i) * generated;
           }
         }
         share[k] = {-f.force_on_i_N, torque_j};
@@ -469,13 +544,13 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         ++wall_contacts;
         const WallMotion& motion = bodies[body].motion;
         const Vec3 wall_omega = motion.active_at(now) ? motion.angular_velocity_rad_per_s : Vec3{};
+        const Vec3 surface_velocity = motion.surface_velocity(contact_point_m, now);
         ContactGeometry c;
         c.normal = normal;
         c.overlap_m = ri - distance_m;
         c.effective_radius_m = ri;
         c.effective_mass_kg = effective_mass_kg(inv_mi);
-        c.relative_velocity_m_per_s =
-            vi + cross(wi, normal * distance_m) - motion.surface_velocity(contact_point_m, now);
+        c.relative_velocity_m_per_s = vi + cross(wi, normal * distance_m) - surface_velocity;
         c.angular_velocity_i_rad_per_s = wi;
         c.angular_velocity_j_rad_per_s = wall_omega;
         c.contact_arm_i_m = distance_m;
@@ -492,11 +567,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             heat_i += q;
             wall_share[body].conduction_W -= q;
           }
-          if (friction_heating) {  // an adiabatic wall takes none of it
-            const double share_i = wh.conducts ? wall_partition : 1.0;
-            friction_power += f.sliding_power_W;
-            heat_i += share_i * f.sliding_power_W;
-            wall_share[body].friction_W += (1.0 - share_i) * f.sliding_power_W;
+          if (generate) {
+            const double generated = all_losses ? f.dissipated_power_W : f.sliding_power_W;
+            const double share_i = wall_share_of_particle(wh, weighted ? weight[i] : 1.0, wall_material);
+            generated_i += generated;
+            heat_i += share_i * generated;
+            wall_share[body].generated_heat_W += (1.0 - share_i) * generated;
           }
         }
         force_i += f.force_on_i_N;
@@ -504,6 +580,15 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         // EDEM's own-spin rolling torque is not booked on the wall (its default: the wall
         // torque would depend on the mesh size); the relative-spin one is, as a reaction.
         own_spin_i += f.own_spin_resistance_i_N_m;
+        if (audit) {
+          dissipated_i += f.dissipated_power_W;
+          elastic_i += f.elastic_energy_J;
+          stiffening_i += f.stiffening_power_W;
+        }
+        // The wall's work on the particle: its force at the surface's velocity, and the
+        // relative-spin rolling torque at the wall's spin (the reaction it feels).
+        if (audit)
+          wall_share[body].power_W += dot(f.force_on_i_N, surface_velocity) + dot(f.rolling_torque_on_i_N_m, wall_omega);
         wall_share[body].force_N -= f.force_on_i_N;
         wall_share[body].torque_N_m +=
             cross(contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
@@ -537,7 +622,11 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       torque[i] = torque_i;
       own_spin[i] = own_spin_i;
       if constexpr (Heat) heat[i] = heat_i;
-      block_friction_power[i / block_size] += friction_power;
+      BlockEnergy& energy = block_energy[i / block_size];
+      energy.generated_heat_W += generated_i;
+      energy.dissipated_W += dissipated_i;
+      energy.elastic_J += elastic_i;
+      energy.stiffening_W += stiffening_i;
     }
 #pragma omp barrier
     for (std::uint32_t j = begin; j < end; ++j) {
@@ -556,7 +645,20 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       own_spin[j] += own_spin_j;
       if constexpr (Heat) heat[j] += heat_j;
       // EDEM's own-spin rolling, once the particle's resistance is summed (RollingOwnSpin).
-      if (own_spin[j] > 0.0) torque[j] += RollingOwnSpin::torque(w[j], own_spin[j], inv_inertia[j], dt);
+      // It resists the particle's own spin, so what it takes is the particle's alone.
+      if (own_spin[j] > 0.0) {
+        const Vec3 rolling = RollingOwnSpin::torque(w[j], own_spin[j], inv_inertia[j], dt);
+        torque[j] += rolling;
+        // At the spin it leaves at the step's end (as for the relative-spin torque).
+        const double loss = -dot(rolling, w[j]) - 0.5 * norm2(rolling) * dt * inv_inertia[j];
+        if (audit) block_energy[j / block_size].dissipated_W += loss;
+        if constexpr (Heat) {
+          if (generate && all_losses) {
+            heat[j] += loss;
+            block_energy[j / block_size].generated_heat_W += loss;
+          }
+        }
+      }
     }
   }
 
@@ -568,18 +670,16 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       sum.force_N += part.force_N;
       sum.torque_N_m += part.torque_N_m;
       sum.conduction_W += part.conduction_W;
-      sum.friction_W += part.friction_W;
+      sum.generated_heat_W += part.generated_heat_W;
+      sum.power_W += part.power_W;
     }
     walls.bodies[b].force_N = sum.force_N;
     walls.bodies[b].torque_N_m = sum.torque_N_m;
+    wall_power_W_[b] = sum.power_W;
     if constexpr (Heat) {
       wall_thermal[b].heat_flow_to_particles_W = -sum.conduction_W;
-      wall_friction_power_W_[b] = sum.friction_W;
+      wall_generated_heat_W_[b] = sum.generated_heat_W;
     }
-  }
-  if constexpr (Heat) {
-    friction_power_W_ = 0.0;
-    for (std::size_t k = 0; k < blocks; ++k) friction_power_W_ += block_friction_power[k];
   }
   stats_.particle_contacts = particle_contacts;
   stats_.wall_contacts = wall_contacts;

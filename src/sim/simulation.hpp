@@ -12,7 +12,9 @@
 #include "core/material.hpp"
 #include "core/particle_store.hpp"
 #include "geometry/wall_set.hpp"
+#include "sim/energy_audit.hpp"
 #include "thermal/conduction_parameters.hpp"
+#include "thermal/heat_partition.hpp"
 #include "thermal/thermal_ledger.hpp"
 #include "thermal/thermal_network.hpp"
 #include "thermal/thermal_wall.hpp"
@@ -42,8 +44,13 @@ struct Domain {
 struct HeatSettings {
   bool enabled = false;
   double time_scale_factor = 1.0;  // S: every conductance x S, for compressed mechanical time
+  // Heat generated at contacts (docs/physics.md, "Heat from dissipation"): the sliding
+  // power only (friction_heating), or every loss of contacts and bonds (dissipation_heating).
   bool friction_heating = false;
-  double friction_partition = 0.5;  // share of sliding power to particle i (to the particle at a wall)
+  bool dissipation_heating = false;
+  HeatPartitionModel partition = HeatPartitionModel::fixed;
+  double friction_partition = 0.5;  // `fixed`: the particle's share at a wall (two particles: half each)
+  bool generates_heat() const { return friction_heating || dissipation_heating; }
   // Per-particle peak temperature and time above the threshold (measure/thermal_history.hpp),
   // recorded in the temperature update when on.
   bool track_thermal_history = false;
@@ -67,6 +74,9 @@ struct SimulationSettings {
   // Below this many particles per thread the force pass is shorter than the threads'
   // synchronisation, so fewer threads run it.
   std::size_t min_particles_per_thread = 2500;
+  // Keep the mechanical energy books (EnergyAudit: losses, the springs' energy, the
+  // walls' work); dissipation heating keeps them whatever this says.
+  bool energy_audit = false;
   HeatSettings heat;
 };
 
@@ -126,6 +136,16 @@ class Simulation {
   /// Sum of m_i h_i(T_i) over particles (h = integral of c from 0 K) plus C_w T_w of lumped walls.
   double thermal_energy_J() const;
   const ThermalLedger& thermal_ledger() const { return ledger_; }
+  /// The mechanical energy books (sim/energy_audit.hpp), kept whether heat is on or not.
+  const EnergyAudit& energy_audit() const { return audit_; }
+  /// Elastic energy stored now: the contacts' springs (at the last contact pass) and the bonds.
+  double elastic_energy_J() const;
+  /// Kinetic, potential and elastic energy now: what the audit balances.
+  double mechanical_energy_J() const;
+  /// mechanical_energy_J() minus what the audit expects: the integrator's error in a correct run.
+  double mechanical_imbalance_J() const { return mechanical_energy_J() - audit_.expected_energy_J(); }
+  /// Work done by each wall body on the particles so far (J), index for index with walls.bodies.
+  const std::vector<double>& wall_work_J() const { return audit_.wall_work_by_body_J; }
   /// thermal_energy_J() minus what the ledger expects: round-off in a correct run.
   double energy_imbalance_J() const { return thermal_energy_J() - ledger_.expected_energy_J(); }
   /// The conduction network of the current contacts: nodes are the particles (by index)
@@ -200,16 +220,30 @@ class Simulation {
   /// Advances particle and wall temperatures by dt with the heat flows of the last pass.
   void update_temperatures(double dt_s);
   void refresh_thermal_material_cache();
+  /// Each particle's weight in the heat partition, at its temperature (heat_partition.hpp).
+  void fill_partition_weights();
+  /// A wall's weight, from its material at the wall's temperature (its own contact conductivity
+  /// where the material has none).
+  double wall_partition_weight(const WallContactHeat& wall, MaterialIndex wall_material) const;
   double particle_thermal_energy_J(std::size_t i) const;
   /// Adds the bonds' forces, torques and heat to the particles (after the contact
   /// pass); dt_s = 0 re-evaluates the stored loads without advancing them.
   void apply_bonds(double dt_s);
+  /// Books the last pass's wall power and losses over dt_s into the audit.
+  void book_mechanical_energy(double dt_s);
+  /// Kinetic and potential energy of one particle (what insertion brings, a loss takes).
+  double particle_mechanical_energy_J(std::size_t i) const;
+  /// The bonds' stored elastic energy (their loads; docs/physics.md, "Energy audit").
+  double bond_elastic_energy_J() const;
   [[noreturn]] void report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const;
 
   SimulationSettings settings_;
   ContactParameterTable contact_parameters_;
   ConductionParameterTable conduction_parameters_;
   ThermalLedger ledger_;
+  EnergyAudit audit_;
+  // An old checkpoint held no audit: the contact springs' energy joins it at the next pass.
+  bool audit_awaits_contact_elastic_ = false;
   NeighborList neighbors_;
   CellGrid grid_;
   double time_s_ = 0.0;
@@ -230,10 +264,16 @@ class Simulation {
   std::vector<std::uint8_t> partner_touching_;
   struct WallShare {
     Vec3 force_N, torque_N_m;
-    double conduction_W = 0.0, friction_W = 0.0;
+    double conduction_W = 0.0, generated_heat_W = 0.0;
+    double power_W = 0.0;  // the wall's work on the particles per unit time
   };
   std::vector<WallShare> block_wall_share_;  // blocks x wall bodies
-  std::vector<double> block_friction_power_W_;
+  struct BlockEnergy {  // per block of owners, summed in order
+    double generated_heat_W = 0.0, dissipated_W = 0.0, elastic_J = 0.0, stiffening_W = 0.0;
+  };
+  std::vector<BlockEnergy> block_energy_;
+  // Per particle, with a partition by conductivity or effusivity: its weight (heat_partition.hpp).
+  std::vector<double> partition_weight_;
   // Per particle, each contact pass: the summed own-spin rolling resistance (RollingOwnSpin).
   std::vector<double> own_spin_resistance_N_m_;
   struct MeshScratch {  // per thread
@@ -242,8 +282,13 @@ class Simulation {
     std::vector<char> touched;
   };
   std::vector<MeshScratch> mesh_scratch_;
-  std::vector<double> wall_friction_power_W_;  // summed over threads, last pass
-  double friction_power_W_ = 0.0;              // all sliding contacts, last pass
+  // The last pass's sums (contacts, then bonds added in apply_bonds).
+  std::vector<double> wall_generated_heat_W_;  // per wall body: generated heat the wall takes
+  std::vector<double> wall_power_W_;           // per wall body: its power into the particles
+  double generated_heat_W_ = 0.0;              // heat generated at all contacts and bonds
+  double dissipated_power_W_ = 0.0;            // every loss, heat on or off
+  double contact_elastic_energy_J_ = 0.0;      // stored in the contacts' springs
+  double stiffening_power_W_ = 0.0;            // the tangential springs' stiffening (EnergyAudit)
   std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0
   std::vector<char> conductivity_varies_;      // per material: k is a table
   std::vector<WallContactHeat> wall_contact_heat_;  // per wall body, taken at each contact pass

@@ -124,6 +124,13 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
   return formed;
 }
 
+double Simulation::bond_elastic_energy_J() const {
+  double sum = 0.0;
+  for (std::size_t b = 0; b < bonds_.size(); ++b)
+    sum += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads[b]);
+  return sum;
+}
+
 void Simulation::apply_bonds(double dt_s) {
   const std::size_t nb = bonds_.size();
   const int threads = active_threads_;
@@ -154,13 +161,22 @@ void Simulation::apply_bonds(double dt_s) {
     k.radius_j_m = radius[j];
     const double inv_m = inv_mass[i] + inv_mass[j], inv_i = inv_inertia[i] + inv_inertia[j];
     const BondSection& section = bonds_.section[b];
+    const BondLoads loads_before = bonds_.loads[b];
     BondAction a = update_bond(p, section, bonds_.rest_length_m[b], k, dt_s, inv_m > 0.0 ? 1.0 / inv_m : 0.0,
                                inv_i > 0.0 ? 1.0 / inv_i : 0.0, bonds_.normal[b], bonds_.loads[b]);
     const BondBreak mode = bond_failure(bond_stresses(bonds_.loads[b], section), p);
     bonds_.broken[b] = static_cast<std::uint8_t>(mode);
     double q = 0.0;
     if (mode != BondBreak::none) {
-      a = {};  // gone for good: it acts no more, from this step on
+      // Gone for good: it acts no more, from this step on, and what it stored is lost
+      // over this step (docs/physics.md, "Energy audit"). The stretch grew over the step
+      // while the pair moved: the energy it had taken is that of mid-step, the mean of
+      // before and after (the end alone is one step's work too much).
+      a = {};
+      a.loss_W = 0.5 *
+                 (regodem::bond_elastic_energy_J(p, section, loads_before) +
+                  regodem::bond_elastic_energy_J(p, section, bonds_.loads[b])) /
+                 settings_.time_step_s;
       any_broken = 1;
     } else if (heat && p.conducts_heat) {
       // The bond radius as a contact radius: G = 2 k_c R_b S.
@@ -181,25 +197,49 @@ void Simulation::apply_bonds(double dt_s) {
   const std::uint32_t* __restrict entry = bonds_.bond_entry.data();
   const BondAction* __restrict action = bonds_.action.data();
   const double* __restrict bond_heat = bonds_.heat_to_i_W.data();
-#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
+  const std::uint32_t* __restrict local_i = bonds_.local_i.data();
+  const std::uint32_t* __restrict local_j = bonds_.local_j.data();
+  // Losses go to the contact pass's blocks of particles, each counted at its bond's i;
+  // with dissipation heating they heat the two particles by the partition (the contact
+  // pass filled the weights).
+  const bool losses_heat = heat && settings_.heat.dissipation_heating;
+  const bool weighted = losses_heat && (settings_.heat.partition == HeatPartitionModel::conductivity ||
+                                        settings_.heat.partition == HeatPartitionModel::effusivity);
+  const double* __restrict weight = partition_weight_.data();
+  BlockEnergy* __restrict block_energy = block_energy_.data();
+  constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
+  // Chunks of one block each: a block's sums are one thread's, in particle order.
+#pragma omp parallel for schedule(static, block_size) num_threads(threads) if (n > 4096)
   for (std::size_t q = 0; q < n; ++q) {
     Vec3 f, t;
-    double h = 0.0;
+    double h = 0.0, loss = 0.0, generated = 0.0;
     for (std::uint32_t e = offset[q]; e < offset[q + 1]; ++e) {
       const std::uint32_t b = entry[e] >> 1;
-      if ((entry[e] & 1u) == 0) {
+      const bool is_i = (entry[e] & 1u) == 0;
+      if (is_i) {
         f += action[b].force_on_i_N;
         t += action[b].torque_on_i_N_m;
         h += bond_heat[b];
+        loss += action[b].loss_W;
       } else {
         f -= action[b].force_on_i_N;
         t += action[b].torque_on_j_N_m;
         h -= bond_heat[b];
       }
+      if (losses_heat && action[b].loss_W != 0.0) {
+        const double share_i = weighted ? heat_share_of_first(weight[local_i[b]], weight[local_j[b]]) : 0.5;
+        const double mine = (is_i ? share_i : 1.0 - share_i) * action[b].loss_W;
+        h += mine;
+        generated += mine;
+      }
     }
     force[q] += f;
     torque[q] += t;
     if (heat) heat_flow[q] += h;
+    if (loss != 0.0 || generated != 0.0) {
+      block_energy[q / block_size].dissipated_W += loss;
+      block_energy[q / block_size].generated_heat_W += generated;
+    }
   }
 
   if (!any_broken) return;

@@ -21,6 +21,7 @@ constexpr const char* kNeighbors = "NBRS";
 constexpr const char* kWalls = "WALL";
 constexpr const char* kWallHeat = "WTHM";
 constexpr const char* kBonds = "BOND";
+constexpr const char* kEnergyAudit = "AUDT";
 
 void put(ByteWriter& w, const Vec3& v) {
   w.put(v.x);
@@ -282,9 +283,9 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
     w.put(stats_.wall_contacts);
     w.put(ledger_.reference_energy_J);
     w.put(ledger_.boundary_heat_in_J);
-    w.put(ledger_.friction_heat_J);
-    w.put(friction_power_W_);
-    w.put_vector(wall_friction_power_W_);
+    w.put(ledger_.generated_heat_J);
+    w.put(generated_heat_W_);
+    w.put_vector(wall_generated_heat_W_);
     put(w, grid_.origin_m);
     w.put(grid_.cell_size_m);
     w.put(static_cast<std::int32_t>(grid_.nx));
@@ -338,7 +339,7 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
       w.put(t.temperature_K);
       w.put(t.heat_flow_to_particles_W);
       w.put(t.heat_to_particles_J);
-      w.put(t.friction_heat_J);
+      w.put(t.generated_heat_J);
     }
     checkpoint.add(kWallHeat, 1, std::move(w));
   }
@@ -346,6 +347,20 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
     ByteWriter w;
     save_bonds(w, bonds_, bond_counts_, bond_breaks_);
     checkpoint.add(kBonds, 1, std::move(w));
+  }
+  {
+    ByteWriter w;
+    w.put(audit_.wall_work_J);
+    w.put(audit_.dissipated_J);
+    w.put(audit_.exchanged_J);
+    w.put(audit_.stiffening_J);
+    w.put_vector(audit_.wall_work_by_body_J);
+    w.put(dissipated_power_W_);
+    w.put(stiffening_power_W_);
+    w.put(contact_elastic_energy_J_);
+    w.put_vector(wall_power_W_);
+    w.put(static_cast<std::uint8_t>(audit_awaits_contact_elastic_));
+    checkpoint.add(kEnergyAudit, 1, std::move(w));
   }
 }
 
@@ -382,10 +397,10 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     r.get(stats_.wall_contacts);
     r.get(ledger_.reference_energy_J);
     r.get(ledger_.boundary_heat_in_J);
-    r.get(ledger_.friction_heat_J);
-    r.get(friction_power_W_);
-    r.get_vector(wall_friction_power_W_);
-    if (wall_friction_power_W_.size() != walls.bodies.size()) r.fail("holds another number of walls");
+    r.get(ledger_.generated_heat_J);
+    r.get(generated_heat_W_);
+    r.get_vector(wall_generated_heat_W_);
+    if (wall_generated_heat_W_.size() != walls.bodies.size()) r.fail("holds another number of walls");
     grid_.origin_m = get_vec3(r);
     r.get(grid_.cell_size_m);
     grid_.nx = r.get<std::int32_t>();
@@ -439,7 +454,7 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
       r.get(t.temperature_K);
       r.get(t.heat_flow_to_particles_W);
       r.get(t.heat_to_particles_J);
-      r.get(t.friction_heat_J);
+      r.get(t.generated_heat_J);
     }
   }
   {
@@ -456,6 +471,30 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     bonds_.refresh_indices(particles);
     for (std::size_t b = 0; b < bonds_.size(); ++b)
       if (bonds_.local_i[b] >= n || bonds_.local_j[b] >= n) r.fail("has a bond to a particle that does not exist");
+  }
+  if (checkpoint.has(kEnergyAudit)) {
+    ByteReader r = checkpoint.reader(kEnergyAudit);
+    r.get(audit_.wall_work_J);
+    r.get(audit_.dissipated_J);
+    r.get(audit_.exchanged_J);
+    r.get(audit_.stiffening_J);
+    r.get_vector(audit_.wall_work_by_body_J);
+    r.get(dissipated_power_W_);
+    r.get(stiffening_power_W_);
+    r.get(contact_elastic_energy_J_);
+    r.get_vector(wall_power_W_);
+    audit_awaits_contact_elastic_ = r.get<std::uint8_t>() != 0;
+    if (audit_.wall_work_by_body_J.size() != walls.bodies.size() || wall_power_W_.size() != walls.bodies.size())
+      r.fail("holds another number of walls");
+  } else {
+    // Written before the audit existed: its books open here, with the energy the
+    // particles have now (the springs' share joins at the next contact pass).
+    audit_ = EnergyAudit{};
+    audit_.wall_work_by_body_J.assign(walls.bodies.size(), 0.0);
+    for (std::size_t i = 0; i < n; ++i) audit_.exchanged_J += particle_mechanical_energy_J(i);
+    audit_.exchanged_J += bond_elastic_energy_J();
+    contact_elastic_energy_J_ = 0.0;
+    audit_awaits_contact_elastic_ = true;
   }
   // The lists do not depend on the thread count, nor do the sums over them: another
   // thread count only splits the owners otherwise, and the run goes on bit for bit.
@@ -488,6 +527,7 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
     }
     particles.conductivity_W_per_mK[i] = materials[m].conductivity_W_per_mK.at(particles.temperature_K[i]);
     if (heat_enabled()) ledger_.reference_energy_J += particle_thermal_energy_J(i);
+    audit_.exchanged_J += particle_mechanical_energy_J(i);
   }
   {
     // The particle pairs and their springs; wall entries belong to the other run's walls.
@@ -521,6 +561,7 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
     for (std::size_t b = 0; b < bonds_.size(); ++b)
       if (bonds_.local_i[b] >= n || bonds_.local_j[b] >= n) r.fail("has a bond to a particle that does not exist");
   }
+  audit_.exchanged_J += bond_elastic_energy_J();  // the adopted bonds' loads
   // Sorts the particles and carries the springs over; renumbers the bonds.
   rebuild_neighbors();
   forces_current_ = false;

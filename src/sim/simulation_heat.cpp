@@ -47,6 +47,27 @@ void Simulation::refresh_thermal_material_cache() {
   }
 }
 
+void Simulation::fill_partition_weights() {
+  const std::size_t n = particles.size();
+  partition_weight_.resize(n);
+  const HeatPartitionModel model = settings_.heat.partition;
+#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Material& m = materials[particles.material[i]];
+    const double c = model == HeatPartitionModel::effusivity ? m.specific_heat_J_per_kgK.at(particles.temperature_K[i]) : 0.0;
+    partition_weight_[i] = heat_partition_weight(model, particles.conductivity_W_per_mK[i], m.density_kg_per_m3, c);
+  }
+}
+
+double Simulation::wall_partition_weight(const WallContactHeat& wall, MaterialIndex wall_material) const {
+  const Material& m = materials[wall_material];
+  // The bulk's conductivity: the material's, else the wall's own contact conductivity.
+  const double material_k = m.conductivity_W_per_mK.at(wall.temperature_K);
+  const double k = material_k > 0.0 || wall.conductivity < 0.0 ? material_k : wall.conductivity;
+  return heat_partition_weight(settings_.heat.partition, k, m.density_kg_per_m3,
+                               m.specific_heat_J_per_kgK.at(wall.temperature_K));
+}
+
 void Simulation::update_temperatures(double dt_s) {
   const double* __restrict inv_specific_heat = inv_specific_heat_.data();
   const char* __restrict conductivity_varies = conductivity_varies_.data();
@@ -79,10 +100,10 @@ void Simulation::update_temperatures(double dt_s) {
 
   for (std::size_t b = 0; b < wall_thermal.size(); ++b) {
     ThermalWall& w = wall_thermal[b];
-    const double friction_W = wall_friction_power_W_[b];
-    const double into_wall_W = -w.heat_flow_to_particles_W + friction_W;
+    const double generated_W = wall_generated_heat_W_[b];
+    const double into_wall_W = -w.heat_flow_to_particles_W + generated_W;
     w.heat_to_particles_J += w.heat_flow_to_particles_W * dt_s;
-    w.friction_heat_J += friction_W * dt_s;
+    w.generated_heat_J += generated_W * dt_s;
     switch (w.mode) {
       case WallThermalMode::adiabatic: break;
       case WallThermalMode::lumped: w.temperature_K += into_wall_W * dt_s / w.heat_capacity_J_per_K; break;
@@ -93,7 +114,7 @@ void Simulation::update_temperatures(double dt_s) {
         break;
     }
   }
-  ledger_.friction_heat_J += friction_power_W_ * dt_s;
+  ledger_.generated_heat_J += generated_heat_W_ * dt_s;
 }
 
 ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vector<int>& wall_boundary) {

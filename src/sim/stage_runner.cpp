@@ -143,7 +143,7 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
                                  {"temperature_max", "K"},
                                  {"thermal_energy", "J"},
                                  {"boundary_heat_in", "J"},
-                                 {"friction_heat", "J"},
+                                 {"generated_heat", "J"},
                                  {"energy_imbalance", "-"}});
   const std::vector<SeriesColumn> history = thermal_history_columns(sim);
   columns.insert(columns.end(), history.begin(), history.end());
@@ -201,7 +201,7 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
   const ThermalLedger& ledger = sim.thermal_ledger();
   const double imbalance = energy - ledger.expected_energy_J();
   row.insert(row.end(), {n > 0 ? sum / n : std::numeric_limits<double>::quiet_NaN(), lowest, highest, energy,
-                         ledger.boundary_heat_in_J, ledger.friction_heat_J,
+                         ledger.boundary_heat_in_J, ledger.generated_heat_J,
                          energy != 0.0 ? imbalance / std::abs(energy) : 0.0});
   const std::vector<double> history = thermal_history_row(sim);
   row.insert(row.end(), history.begin(), history.end());

@@ -30,7 +30,7 @@ struct ThermalWall {
   // Filled by the simulation.
   double heat_flow_to_particles_W = 0.0;  // last step: sum over contacts of Q from the wall
   double heat_to_particles_J = 0.0;       // cumulative heat conducted into the particles
-  double friction_heat_J = 0.0;           // cumulative friction heat the wall received
+  double generated_heat_J = 0.0;           // cumulative generated heat the wall received
 };
 
 /// What a contact with a wall body needs, taken once per pass: its temperature and

@@ -9,66 +9,16 @@
 // on 2 threads and resumed on 1 or 3.
 #include <gtest/gtest.h>
 
-#include "core/rng.hpp"
+#include "drilling_bed.hpp"
 #include "geometry/triangle_mesh.hpp"
 #include "io/checkpoint_file.hpp"
-#include "physics_fixtures.hpp"
 
 namespace regodem::testing {
 namespace {
 
-constexpr double kRadius = 0.5e-3;
 
 
-Simulation make_bed(int threads) {
-  SphereMaterial m;
-  m.shear_modulus = 1e7;
-  m.restitution = 0.3;
-  m.sliding_friction = 0.5;
-  m.rolling_friction = 0.1;
-  const double dt = 0.1 * rayleigh_time_for(m, kRadius);
-  WallSet walls;
-  walls.add_cylinder(walls.add_body("cup", {}), {0, 0, -0.004}, {0, 0, 1}, 0.0045, 0.012, true, false, false, false, 0);
-  walls.add_plane(walls.add_body("floor", {}), {0, 0, -0.004}, {0, 0, 1}, 0);
-  WallMotion drill;
-  drill.velocity_m_per_s = {0, 0, -0.05};
-  drill.angular_velocity_rad_per_s = {0, 0, 30.0};
-  drill.axis_point_m = {0, 0, 0};
-  drill.max_travel_m = 0.004;
-  const std::uint32_t paddle = walls.add_body("paddle", drill);
-  walls.add_mesh(paddle, box_mesh({-0.0025, -0.0006, 0.0}, {0.0025, 0.0006, 0.004}, "paddle"), 0);
-  SimulationSettings settings = settings_for(kRadius, dt, {0, 0, -9.81}, 0.02, threads);
-  settings.min_particles_per_thread = 50;  // up to 4 threads work on this small bed
-  settings.heat.enabled = true;
-  settings.heat.time_scale_factor = 1e3;
-  settings.heat.friction_heating = true;
-  ThermalWall cup, floor, paddle_heat;
-  cup.mode = WallThermalMode::lumped;
-  cup.temperature_K = 300.0;
-  cup.heat_capacity_J_per_K = 0.05;
-  floor.mode = WallThermalMode::fixed;
-  floor.prescribed_temperature_K = TimeTable({0.0, 0.05}, {400.0, 500.0});
-  paddle_heat.mode = WallThermalMode::fixed;
-  paddle_heat.prescribed_temperature_K = TimeTable(150.0);
-  Simulation sim(one_material(m), walls, settings, {cup, floor, paddle_heat});
-  BondParameters bond;
-  bond.normal_stiffness_Pa_per_m = 1e10;
-  bond.shear_stiffness_Pa_per_m = 4e9;
-  bond.tensile_strength_Pa = 2e4;  // weak: the paddle breaks some
-  bond.shear_strength_Pa = 2e4;
-  sim.configure_bonds({bond}, {0});
-  Rng rng(5);
-  for (int i = 0; i < 8; ++i)
-    for (int j = 0; j < 8; ++j)
-      for (int k = 0; k < 5; ++k) {
-        const Vec3 x{(i - 3.5) * 1.02e-3, (j - 3.5) * 1.02e-3, -0.0035 + k * 1.0e-3};
-        if (norm2(Vec3{x.x, x.y, 0}) > 0.004 * 0.004) continue;
-        NewParticle p = sphere(x, {rng.uniform(-0.02, 0.02), rng.uniform(-0.02, 0.02), 0.0},
-                               kRadius * rng.uniform(0.95, 1.0), m.density, rng.uniform(200.0, 300.0));
-        sim.add_particle(p);
-      }
-  return sim;
-}
+Simulation make_bed(int threads) { return make_drilling_bed({.threads = threads}); }
 
 struct Phase {
   std::uint64_t settle_steps, bonded_steps;
@@ -117,7 +67,11 @@ void expect_identical(const Simulation& a, const Simulation& b) {
     ASSERT_EQ(a.bonds().loads[k].shear_force_N, b.bonds().loads[k].shear_force_N) << "bond " << k;
   }
   EXPECT_EQ(a.thermal_ledger().boundary_heat_in_J, b.thermal_ledger().boundary_heat_in_J);
-  EXPECT_EQ(a.thermal_ledger().friction_heat_J, b.thermal_ledger().friction_heat_J);
+  EXPECT_EQ(a.thermal_ledger().generated_heat_J, b.thermal_ledger().generated_heat_J);
+  EXPECT_EQ(a.energy_audit().wall_work_by_body_J, b.energy_audit().wall_work_by_body_J);
+  EXPECT_EQ(a.energy_audit().dissipated_J, b.energy_audit().dissipated_J);
+  EXPECT_EQ(a.energy_audit().exchanged_J, b.energy_audit().exchanged_J);
+  EXPECT_EQ(a.elastic_energy_J(), b.elastic_energy_J());
 }
 
 void check_restart(int threads, const Phase& phase) {
@@ -163,6 +117,29 @@ TEST(ThreadCount, OneTwoAndThreeThreadsRunBitForBitAlike) {
   EXPECT_EQ(two.force_pass_threads(), 2);
   EXPECT_EQ(three.force_pass_threads(), 3);
   EXPECT_GT(one.bond_counts().broken(), 0u);  // the paddle broke bonds: every pass was exercised
+  expect_identical(one, two);
+  expect_identical(one, three);
+}
+
+// Every loss as heat, shared by effusivity, with damped bonds and EDEM's own-spin rolling:
+// the passes that only dissipation heating takes, on 1, 2 and 3 threads.
+TEST(ThreadCount, DissipationHeatingRunsBitForBitAlike) {
+  const Phase phase{300, 400};
+  const auto bed = [](int threads) {
+    return make_drilling_bed({.threads = threads,
+                              .dissipation_heating = true,
+                              .partition = HeatPartitionModel::effusivity,
+                              .bond_damping_ratio = 0.2,
+                              .rolling_model = RollingModel::own_spin});
+  };
+  Simulation one = bed(1), two = bed(2), three = bed(3);
+  for (Simulation* sim : {&one, &two, &three}) {
+    run_first_part(*sim, phase);
+    sim->advance(phase.bonded_steps);
+  }
+  EXPECT_EQ(three.force_pass_threads(), 3);
+  EXPECT_GT(one.bond_counts().broken(), 0u);
+  EXPECT_GT(one.thermal_ledger().generated_heat_J, 0.0);
   expect_identical(one, two);
   expect_identical(one, three);
 }

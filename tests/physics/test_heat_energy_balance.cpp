@@ -17,7 +17,7 @@ constexpr double kRadius = 0.5e-3;
 struct BoxRun {
   double worst_step_change = 0.0;  // largest |change of imbalance| in one step / energy
   double final_imbalance = 0.0;    // / energy
-  double friction_heat_J = 0.0;
+  double generated_heat_J = 0.0;
   double energy_J = 0.0;
   double temperature_spread_start = 0.0, temperature_spread_end = 0.0;
 };
@@ -69,7 +69,7 @@ BoxRun closed_box(bool friction_heating, int steps) {
   }
   r.energy_J = sim.thermal_energy_J();
   r.final_imbalance = sim.energy_imbalance_J() / r.energy_J;
-  r.friction_heat_J = sim.thermal_ledger().friction_heat_J;
+  r.generated_heat_J = sim.thermal_ledger().generated_heat_J;
   r.temperature_spread_end = spread();
   return r;
 }
@@ -84,7 +84,7 @@ TEST(HeatEnergyBalance, ClosedAdiabaticBoxConservesEnergyToRoundOff) {
 
 TEST(HeatEnergyBalance, FrictionHeatIsBookedAndConserved) {
   const BoxRun r = closed_box(true, 1500);
-  EXPECT_GT(r.friction_heat_J, 0.0);
+  EXPECT_GT(r.generated_heat_J, 0.0);
   EXPECT_LT(r.worst_step_change, 1e-12);
   EXPECT_LT(std::abs(r.final_imbalance), 1e-12);
 }
@@ -94,7 +94,7 @@ TEST(HeatEnergyBalance, FrictionHeatIsBookedAndConserved) {
 /// rotational kinetic energy lost). That is the heat the ledger must book; the wall's
 /// share follows the partition (all of it to the particle at an adiabatic wall).
 struct SlideResult {
-  double friction_heat_J, expected_J, particle_heat_J, wall_heat_J;
+  double generated_heat_J, expected_J, particle_heat_J, wall_heat_J;
 };
 
 SlideResult slide(WallThermalMode wall_mode, double partition) {
@@ -122,8 +122,8 @@ SlideResult slide(WallThermalMode wall_mode, double partition) {
   const int steps = static_cast<int>(std::ceil(2.0 * 2.0 * v0 / (7.0 * 0.3 * 9.81) / dt));
   sim.advance(static_cast<std::uint64_t>(steps));
   const double particle_heat = mass * m.specific_heat * (sim.particles.temperature_K[0] - 200.0);
-  return {sim.thermal_ledger().friction_heat_J, mass * v0 * v0 / 7.0, particle_heat,
-          sim.wall_thermal[0].friction_heat_J};
+  return {sim.thermal_ledger().generated_heat_J, mass * v0 * v0 / 7.0, particle_heat,
+          sim.wall_thermal[0].generated_heat_J};
 }
 
 // Friction heat equals the analytic dissipation within 1 % (the tangential spring's
@@ -132,13 +132,13 @@ SlideResult slide(WallThermalMode wall_mode, double partition) {
 // temperature rise of ~4e-7 K on 200 K, so round-off limits it to ~1e-8).
 TEST(HeatEnergyBalance, SlidingFrictionHeatMatchesTheDissipatedKineticEnergy) {
   const SlideResult adiabatic = slide(WallThermalMode::adiabatic, 0.5);
-  EXPECT_NEAR(adiabatic.friction_heat_J / adiabatic.expected_J, 1.0, 0.01);
-  EXPECT_NEAR(adiabatic.particle_heat_J / adiabatic.friction_heat_J, 1.0, 1e-6);
+  EXPECT_NEAR(adiabatic.generated_heat_J / adiabatic.expected_J, 1.0, 0.01);
+  EXPECT_NEAR(adiabatic.particle_heat_J / adiabatic.generated_heat_J, 1.0, 1e-6);
 
   const SlideResult lumped = slide(WallThermalMode::lumped, 0.3);
-  EXPECT_NEAR(lumped.friction_heat_J / lumped.expected_J, 1.0, 0.01);
-  EXPECT_NEAR(lumped.particle_heat_J / lumped.friction_heat_J, 0.3, 1e-6);
-  EXPECT_NEAR(lumped.wall_heat_J / lumped.friction_heat_J, 0.7, 1e-9);
+  EXPECT_NEAR(lumped.generated_heat_J / lumped.expected_J, 1.0, 0.01);
+  EXPECT_NEAR(lumped.particle_heat_J / lumped.generated_heat_J, 0.3, 1e-6);
+  EXPECT_NEAR(lumped.wall_heat_J / lumped.generated_heat_J, 0.7, 1e-9);
 }
 
 }  // namespace

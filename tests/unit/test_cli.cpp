@@ -262,6 +262,7 @@ TEST_F(CliTest, RunWritesSummaryTimeSeriesAndReproductionFiles) {
   EXPECT_EQ(summary.at("heat"), nlohmann::json({{"enabled", false},
                                                 {"time_scale_factor", 1.0},
                                                 {"friction_heating", false},
+                                                {"heat_partition", "fixed"},
                                                 {"friction_partition", 0.5}}));
 
   const std::vector<std::string> lines = read_lines(output / "time_series.csv");
@@ -295,7 +296,8 @@ TEST_F(CliTest, HeatSettingsAreRecordedInTheSummary) {
 
   const CommandResult described = run_regodem({"validate", scenario.string()}, directory_);
   ASSERT_EQ(described.exit_code, 0) << described.output;
-  EXPECT_TRUE(contains(described.output, "heat: on, time-scale factor S = 10, friction heating on (0.25 of it"))
+  EXPECT_TRUE(contains(described.output, "heat: on, time-scale factor S = 10, heat generated at contacts: the sliding "
+                                         "power (0.25 of it to the particle at a wall"))
       << described.output;
 
   const fs::path output = directory_ / "warm";
@@ -306,6 +308,7 @@ TEST_F(CliTest, HeatSettingsAreRecordedInTheSummary) {
   EXPECT_EQ(read_json(output / "summary.json").at("heat"), nlohmann::json({{"enabled", true},
                                                                           {"time_scale_factor", 10.0},
                                                                           {"friction_heating", true},
+                                                                                                    {"heat_partition", "fixed"},
                                                                           {"friction_partition", 0.25}}));
 }
 

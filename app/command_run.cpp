@@ -192,6 +192,23 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   summary.heat = {heat.enabled, heat.time_scale_factor, heat.friction_heating, to_string(heat.partition),
                   heat.friction_partition};
   const Simulation& sim = prepared.simulation();
+  if (sim.keeps_energy_audit()) {
+    const EnergyAudit& audit = sim.energy_audit();
+    EnergyAuditSummary a;
+    a.wall_work_J = audit.wall_work_J;
+    a.dissipated_J = audit.dissipated_J;
+    a.spring_source_J = audit.spring_source_J;
+    a.exchanged_J = audit.exchanged_J;
+    a.mechanical_energy_J = sim.mechanical_energy_J();
+    a.imbalance_J = sim.mechanical_imbalance_J();
+    a.relative_imbalance = audit.relative(a.imbalance_J);
+    for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b) {
+      const WallBody& wall = sim.walls.bodies[b];
+      if (norm2(wall.feed_direction) > 0.0 || norm2(wall.spin_axis) > 0.0)
+        a.wall_work_by_wall_J.emplace_back(wall.name, audit.wall_work_by_body_J[b]);
+    }
+    summary.energy_audit = a;
+  }
   if (sim.bonds_configured()) {
     const BondCounts bonds = sim.bond_counts();  // the simulation's, whether the run ended or threw
     summary.bonds = BondSummary{bonds.formed, bonds.intact, bonds.broken_in_tension, bonds.broken_in_shear};

@@ -99,6 +99,8 @@ class Series:
         for k, field in enumerate(header):
             match = HEADER.match(field.strip())
             name, unit = (match.group(1).strip(), match.group(2)) if match else (field.strip(), "")
+            if name == "friction_heat":  # its name before 2026-12-02
+                name = "generated_heat"
             if not name or is_number(name):
                 raise BadInput(f"{path}:1: column {k + 1} of the header has no name ('{field}')")
             if name in self.units:
@@ -316,7 +318,7 @@ def plot_energy_balance(runs, out_dir, written):
         energy = s.column("thermal_energy")
         top.plot(t, energy - energy[0], color=colour, label=f"{run.label}: change of thermal energy")
         top.plot(t, s.column("boundary_heat_in") + s.column("generated_heat"), color=colour, linestyle="--",
-                 label=f"{run.label}: heat in (fixed walls + friction)")
+                 label=f"{run.label}: heat in (fixed walls + generated)")
         bottom.plot(t, s.column("energy_imbalance"), color=colour, label=run.label)
         mark_stages(top, s, time_name)
         mark_stages(bottom, s, time_name)

@@ -43,23 +43,24 @@ struct ContactLaw {
     out.elastic_normal_force_N = normal.elastic_force_N;
     out.contact_radius_m = normal.contact_radius_m;
     out.sliding_power_W = sliding ? std::abs(dot(tangential, tangential_velocity)) : 0.0;
-    // Losses (docs/physics.md, "Energy audit"): the normal damper's c v_n^2, and what the
-    // tangential force takes from the relative motion over the step less what its spring
-    // kept, -F_t . v_t - k (|xi|^2 - |xi_0|^2) / (2 dt): damping, slip and the spring's own
-    // implicit update, stuck or sliding. Not below 0: where the sliding spring's reset
-    // stores more than the force took, the surplus stays in the audit's imbalance.
+    // Losses (docs/physics.md, "Energy audit"). The normal damper's c v_n^2. Tangentially,
+    // the work the force takes from the relative motion, -F_t . v_t: while sliding all of it
+    // is friction's; while stuck, what the spring does not keep (damping, and the implicit
+    // spring update's own k v^2 dt / 2). What the spring's energy k |xi|^2 / 2 does besides
+    // is the model's own source, booked apart: its stiffness follows the contact radius
+    // (Mindlin k_t = 8 G* a; the overlap a step ago is delta less the approach over it), and
+    // the reset while sliding, xi = -(F_t + gamma_t v_t)/k_t, can leave it holding energy no
+    // force put in (where gamma_t |v_t| > mu F_n it points against the slip).
     const double spring_after_m2 = norm2(tangential_history_m);
-    // The spring's stiffness follows the contact radius (Mindlin: k_t = 8 G* a), so the
-    // energy it holds, k |xi|^2 / 2, changes with the overlap at a fixed stretch: energy
-    // the model makes (loading) or takes (unloading) without a force doing it. The audit
-    // books it on its own; the overlap a step ago is delta less the approach over it.
     const double earlier_stiffness = Tangential::stiffness(
         p.effective_shear_modulus_Pa,
         Normal::contact_radius_m(c.effective_radius_m, std::max(c.overlap_m - approach_speed * c.slip_time_s, 0.0)));
-    out.stiffening_power_W = 0.5 * (tangential_stiffness - earlier_stiffness) * spring_before_m2 / c.time_step_s;
-    const double tangential_loss_W = -dot(tangential, tangential_velocity) -
-                                     0.5 * tangential_stiffness * (spring_after_m2 - spring_before_m2) / c.time_step_s;
-    out.dissipated_power_W = (normal_force - normal.elastic_force_N) * approach_speed + std::max(tangential_loss_W, 0.0);
+    const double tangential_work_W = -dot(tangential, tangential_velocity);
+    const double spring_change_W = 0.5 * tangential_stiffness * (spring_after_m2 - spring_before_m2) / c.time_step_s;
+    const double tangential_loss_W = std::max(sliding ? tangential_work_W : tangential_work_W - spring_change_W, 0.0);
+    out.spring_source_W = 0.5 * (tangential_stiffness - earlier_stiffness) * spring_before_m2 / c.time_step_s +
+                          spring_change_W + tangential_loss_W - tangential_work_W;
+    out.dissipated_power_W = (normal_force - normal.elastic_force_N) * approach_speed + tangential_loss_W;
     out.elastic_energy_J =
         Normal::stored_energy_J(normal.elastic_force_N, c.overlap_m) + 0.5 * tangential_stiffness * spring_after_m2;
     out.tangential_force_on_i_N = tangential;
@@ -74,13 +75,6 @@ struct ContactLaw {
       out.rolling_torque_on_i_N_m = RelativeRolling::evaluate(
           c.angular_velocity_i_rad_per_s - c.angular_velocity_j_rad_per_s, c.normal, p.rolling_friction,
           normal.elastic_force_N, c.effective_radius_m, c.inv_inertia_i + c.inv_inertia_j, c.time_step_s);
-      // What the torque takes from the relative spin over the step: at the spin it leaves
-      // at the step's end, omega_r less half its own change (with the cap, which stops the
-      // spin in one step, that is the spin's energy I* omega_r^2 / 2, not twice it).
-      const double torque2 = norm2(out.rolling_torque_on_i_N_m);
-      out.dissipated_power_W +=
-          -dot(out.rolling_torque_on_i_N_m, c.angular_velocity_i_rad_per_s - c.angular_velocity_j_rad_per_s) -
-          0.5 * torque2 * c.time_step_s * (c.inv_inertia_i + c.inv_inertia_j);
     }
     return out;
   }

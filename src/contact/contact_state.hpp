@@ -41,15 +41,16 @@ struct ContactForces {
   double elastic_normal_force_N = 0.0;  // F_n^e, also what conduction uses (DESIGN.md Eq. 1)
   double contact_radius_m = 0.0;        // a = sqrt(R* delta_n) for Hertz, the conduction laws' a
   double sliding_power_W = 0.0;         // |F_t . v_t| while sliding (Coulomb-limited), else 0
-  // Every loss of the contact (docs/physics.md, "Energy audit"): normal damping
-  // (F_n - F_n^e) v_n, what the tangential force takes less what its spring keeps, and the
-  // relative-spin rolling torque's -tau . omega_r.
+  // The contact's losses but rolling's (docs/physics.md, "Energy audit"): normal damping
+  // (F_n - F_n^e) v_n and what the tangential force takes less what its spring keeps.
+  // Rolling torques are capped to stop a spin within a step, so their loss is found per
+  // particle at the spin the step ends with (Simulation::book_rolling_losses).
   double dissipated_power_W = 0.0;
   // Stored in the springs after this evaluation: Hertz 2/5 F_n^e delta_n + k_t |xi|^2 / 2.
   double elastic_energy_J = 0.0;
-  // What the tangential spring's stiffening with the overlap added to its energy over the
-  // step, (k_t - k_t,before) |xi_before|^2 / (2 dt): the Mindlin model's own source.
-  double stiffening_power_W = 0.0;
+  // What the tangential spring's energy gained over the step that no force's work put in:
+  // its stiffening with the overlap and its reset while sliding (contact_law.hpp).
+  double spring_source_W = 0.0;
 };
 
 }  // namespace regodem

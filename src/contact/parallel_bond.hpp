@@ -104,7 +104,8 @@ struct BondAction {
   Vec3 torque_on_i_N_m;
   Vec3 torque_on_j_N_m;
   // What the bond's damping takes from the pair's motion (c v^2 per component; 0 without
-  // damping), or, in the step it breaks, its stored energy over the step.
+  // damping), or, in the step it breaks, the mean of its stored energy before and after
+  // the step's update, over the step.
   double loss_W = 0.0;
 };
 

@@ -147,6 +147,19 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
                   {"friction_heating", summary.heat.friction_heating},
                   {"heat_partition", summary.heat.heat_partition},
                   {"friction_partition", number_or_null(summary.heat.friction_partition)}};
+  if (summary.energy_audit) {
+    const EnergyAuditSummary& a = *summary.energy_audit;
+    nlohmann::ordered_json by_wall = nlohmann::ordered_json::object();
+    for (const auto& [name, work_J] : a.wall_work_by_wall_J) by_wall[name] = number_or_null(work_J);
+    json["energy_audit"] = {{"wall_work_J", number_or_null(a.wall_work_J)},
+                            {"dissipated_J", number_or_null(a.dissipated_J)},
+                            {"spring_source_J", number_or_null(a.spring_source_J)},
+                            {"exchanged_J", number_or_null(a.exchanged_J)},
+                            {"mechanical_energy_J", number_or_null(a.mechanical_energy_J)},
+                            {"imbalance_J", number_or_null(a.imbalance_J)},
+                            {"relative_imbalance", number_or_null(a.relative_imbalance)},
+                            {"wall_work_by_wall_J", by_wall}};
+  }
   if (summary.bonds)
     json["bonds"] = {{"formed", summary.bonds->formed},
                      {"intact", summary.bonds->intact},

@@ -42,6 +42,15 @@ struct HeatSummary {
 };
 
 
+/// The mechanical energy books at the end (sim/energy_audit.hpp; docs/physics.md, "Energy audit").
+struct EnergyAuditSummary {
+  double wall_work_J = 0.0, dissipated_J = 0.0, spring_source_J = 0.0, exchanged_J = 0.0;
+  double mechanical_energy_J = 0.0;  // kinetic + potential + elastic, now
+  double imbalance_J = 0.0;          // mechanical energy less what the books expect
+  double relative_imbalance = 0.0;   // over |wall work| + dissipated (0 when both are 0)
+  std::vector<std::pair<std::string, double>> wall_work_by_wall_J;  // moving walls
+};
+
 /// Parallel bonds of the run (present when the scenario has a `bonds` section).
 struct BondSummary {
   std::uint64_t formed = 0, intact = 0, broken_in_tension = 0, broken_in_shear = 0;
@@ -78,6 +87,7 @@ struct RunSummary {
   std::string build_type;
   std::string compiler;
   std::string started_at_utc;  // ISO 8601
+  std::optional<EnergyAuditSummary> energy_audit;  // when the run kept the books
   std::string scenario_name;
   std::string scenario_file;        // as given on the command line
   std::string scenario_hash;

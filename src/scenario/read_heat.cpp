@@ -69,8 +69,9 @@ void check_heat_requirements(const ScenarioSpec& spec, const ScenarioReferences&
     return;
   for (const WallSpec& wall : spec.walls) {
     if (wall.thermal.mode == WallThermalModeSpec::adiabatic) continue;
-    const std::string material_name = wall.material.empty() && !spec.insertions.empty() ? spec.insertions.front().material
-                                                                                          : wall.material;
+    // A wall that names none is of the first material (docs/scenario-format.md, `walls`).
+    const std::string material_name =
+        wall.material.empty() && !spec.materials.empty() ? spec.materials.front().name : wall.material;
     for (const MaterialSpec& material : spec.materials) {
       if (material.name != material_name) continue;
       std::string missing;

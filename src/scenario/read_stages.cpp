@@ -250,7 +250,8 @@ void read_output(const YamlSection& root, ScenarioSpec& spec) {
   if (!value) return;
   const auto section = value->section();
   if (!section) return;
-  section->allow_only({"interval", "progress_interval", "snapshots"});
+  section->allow_only({"interval", "progress_interval", "energy_audit", "snapshots"});
+  spec.output.energy_audit = section->boolean("energy_audit").value_or(false);
   spec.output.interval_s = read_checked_quantity(*section, "interval", Dimension::time,
                                                  Presence::optional, is_positive,
                                                  "be greater than 0")

@@ -858,6 +858,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   settings.heat.time_scale_factor = spec.heat.time_scale_factor;
   settings.heat.friction_heating = spec.heat.friction_heating;
   settings.heat.friction_partition = spec.heat.friction_partition;
+  settings.energy_audit = spec.output.energy_audit;
   settings.heat.partition = heat_partition_model(spec.heat.heat_partition);
   settings.heat.track_thermal_history = spec.heat.enabled && spec.measurements.thermal_history;
   settings.heat.thermal_history_threshold_K = spec.measurements.thermal_history_threshold_K;

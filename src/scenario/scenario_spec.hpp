@@ -304,6 +304,7 @@ struct SnapshotSpec {
 struct OutputSpec {
   double interval_s = 0.0;        // time-series sampling interval; 0 = 100 samples per stage
   double progress_interval_s = 2.0;  // wall-clock seconds between progress lines
+  bool energy_audit = false;         // the mechanical energy books in the time series and summary
   SnapshotSpec snapshots;
 };
 

@@ -2,12 +2,14 @@
 // The mechanical energy books of a run (docs/physics.md, "Energy audit"). The particles'
 // kinetic, potential and elastic energy may change only by the work of moving walls, the
 // losses at contacts and bonds, and what added or removed particles bring or take:
-//   E_kin + E_pot + E_el = wall work + exchanged + stiffening - dissipated
-// (+ the integrator's error), where `stiffening` is the energy the Mindlin spring gains
-// as its stiffness grows with the overlap (and gives up as it falls): the contact
-// model's own source, not a force's work.
-// With heat.dissipation_heating every joule of `dissipated` is heat, booked in the
-// thermal ledger as generated heat, so the two books meet.
+//   E_kin + E_pot + E_el = wall work + exchanged + spring source - dissipated
+// (+ the integrator's error), where the spring source is what the Mindlin tangential
+// spring's energy gains without a force's work: as its stiffness follows the overlap,
+// and at its reset while sliding (contact/contact_law.hpp). It is the contact model's
+// own, and the audit reports it rather than hide it in the imbalance.
+// With the engine's dissipation heating (HeatSettings::dissipation_heating, not a scenario
+// key yet) every joule of `dissipated` is heat, booked in the thermal ledger as generated
+// heat, so the two books meet.
 #include <vector>
 
 namespace regodem {
@@ -15,7 +17,7 @@ namespace regodem {
 struct EnergyAudit {
   double wall_work_J = 0.0;    // done on the particles by moving walls, F . v + tau . omega
   double dissipated_J = 0.0;   // lost at contacts (damping, sliding, rolling) and bonds (damping, breaking)
-  double stiffening_J = 0.0;   // made by the tangential springs' stiffening (Mindlin k_t = 8 G* a)
+  double spring_source_J = 0.0;  // made by the tangential springs themselves (stiffening, reset)
   // Brought in by added particles (kinetic and potential energy, and the springs' energy
   // when forces are first found after an insertion or a change of contact properties),
   // less what removed particles take out.
@@ -23,7 +25,7 @@ struct EnergyAudit {
   std::vector<double> wall_work_by_body_J;
 
   /// What the particles' mechanical energy should be.
-  double expected_energy_J() const { return wall_work_J + exchanged_J + stiffening_J - dissipated_J; }
+  double expected_energy_J() const { return wall_work_J + exchanged_J + spring_source_J - dissipated_J; }
   /// The energy that went through the books, |wall work| + dissipated, against which an
   /// imbalance is judged (the exchanged energy holds potential energy, whose zero is
   /// arbitrary, so it is left out).

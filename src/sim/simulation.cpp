@@ -147,6 +147,7 @@ void Simulation::ensure_forces() {
   const double springs_before_J = contact_elastic_energy_J_;
   compute_forces(0.0);
   audit_.exchanged_J += contact_elastic_energy_J_ - springs_before_J;
+  audit_awaits_contact_elastic_ = false;  // an old checkpoint's springs: just booked
   forces_current_ = true;
 }
 
@@ -163,13 +164,44 @@ void Simulation::step() {
   if (heat_enabled()) update_temperatures(settings_.time_step_s);
 }
 
+void Simulation::book_rolling_losses() {
+  // A rolling torque tau on a particle does the work tau . omega over the step at the
+  // spin the step ends with, omega + T dt / (2 I) with T every torque on it (velocity
+  // Verlet): the cap that stops a spin in one step then takes its energy, I omega^2 / 2,
+  // and not twice it, and several capped contacts that reverse a spin give back what the
+  // reversal makes. At a wall the wall's spin adds tau_r . omega_w (its own work). The loss
+  // heats the particle that lost it, with dissipation heating (docs/physics.md).
+  const std::size_t n = particles.size();
+  const double half_dt = 0.5 * settings_.time_step_s;
+  const bool heats = heat_enabled() && settings_.heat.dissipation_heating;
+  const Vec3* __restrict rolling = rolling_torque_N_m_.data();
+  const double* __restrict wall_power = rolling_wall_power_W_.data();
+  const Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
+  const Vec3* __restrict torque = particles.torque_N_m.data();
+  const double* __restrict inv_inertia = particles.inv_inertia.data();
+  double* __restrict heat = particles.heat_flow_W.data();
+  BlockEnergy* __restrict block_energy = block_energy_.data();
+  constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
+#pragma omp parallel for schedule(static, block_size) num_threads(active_threads_) if (n > 4096)
+  for (std::size_t p = 0; p < n; ++p) {
+    if (rolling[p] == Vec3{} && wall_power[p] == 0.0) continue;
+    const Vec3 spin_at_end = w[p] + torque[p] * (half_dt * inv_inertia[p]);
+    const double loss = wall_power[p] - dot(rolling[p], spin_at_end);
+    block_energy[p / block_size].dissipated_W += loss;
+    if (heats) {
+      heat[p] += loss;
+      block_energy[p / block_size].generated_heat_W += loss;
+    }
+  }
+}
+
 void Simulation::book_mechanical_energy(double dt_s) {
   for (std::size_t b = 0; b < wall_power_W_.size(); ++b) {
     audit_.wall_work_by_body_J[b] += wall_power_W_[b] * dt_s;
     audit_.wall_work_J += wall_power_W_[b] * dt_s;
   }
   audit_.dissipated_J += dissipated_power_W_ * dt_s;
-  audit_.stiffening_J += stiffening_power_W_ * dt_s;
+  audit_.spring_source_J += spring_source_W_ * dt_s;
   if (audit_awaits_contact_elastic_) {
     audit_.exchanged_J += contact_elastic_energy_J_;
     audit_awaits_contact_elastic_ = false;
@@ -346,13 +378,14 @@ void Simulation::compute_forces(double slip_time_s) {
   else
     compute_forces_and_heat<false>(slip_time_s);
   if (!bonds_.empty()) apply_bonds(slip_time_s);
+  if (!rolling_torque_N_m_.empty()) book_rolling_losses();
   // The losses and stored energy of contacts and bonds, block by block in order.
-  generated_heat_W_ = dissipated_power_W_ = contact_elastic_energy_J_ = stiffening_power_W_ = 0.0;
+  generated_heat_W_ = dissipated_power_W_ = contact_elastic_energy_J_ = spring_source_W_ = 0.0;
   for (const BlockEnergy& e : block_energy_) {
     generated_heat_W_ += e.generated_heat_W;
     dissipated_power_W_ += e.dissipated_W;
     contact_elastic_energy_J_ += e.elastic_J;
-    stiffening_power_W_ += e.stiffening_W;
+    spring_source_W_ += e.spring_source_W;
   }
 }
 
@@ -413,16 +446,22 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   double* __restrict heat = particles.heat_flow_W.data();
   own_spin_resistance_N_m_.resize(particles.size());
   double* __restrict own_spin = own_spin_resistance_N_m_.data();
-  // Heat from the contacts' losses (docs/physics.md, "Heat from dissipation"): the sliding
+  // Heat from the contacts' losses (docs/physics.md, "Friction heat and its partition"): the sliding
   // power, or every loss; shared by the partition model.
   const bool generate = Heat && settings_.heat.generates_heat();
   const bool all_losses = settings_.heat.dissipation_heating;
   const HeatPartitionModel partition = settings_.heat.partition;
   const double fixed_wall_share = settings_.heat.friction_partition;
-  const bool audit = settings_.energy_audit || (Heat && all_losses);
+  const bool audit = keeps_energy_audit();
   const bool weighted = generate && (partition == HeatPartitionModel::conductivity ||
                                      partition == HeatPartitionModel::effusivity);
   if (weighted) fill_partition_weights();
+  rolling_torque_N_m_.resize(audit ? particles.size() : 0);
+  rolling_wall_power_W_.resize(audit ? particles.size() : 0);
+  partner_rolling_N_m_.resize(audit ? neighbors_.partner.size() : 0);
+  Vec3* __restrict rolling = rolling_torque_N_m_.data();
+  double* __restrict rolling_wall_power = rolling_wall_power_W_.data();
+  Vec3* __restrict share_rolling = partner_rolling_N_m_.data();
   const double* __restrict weight = partition_weight_.data();
   // The particle's share of a wall contact's heat (an adiabatic wall takes none).
   const auto wall_share_of_particle = [&](const WallContactHeat& wh, double weight_i, MaterialIndex wall_material) {
@@ -462,7 +501,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       const double ri = radius[i], inv_mi = inv_mass[i], inv_ii = inv_inertia[i];
       const MaterialIndex mat_i = material[i];
       Vec3 force_i = gravity * mass[i], torque_i;
-      double own_spin_i = 0.0, generated_i = 0.0, dissipated_i = 0.0, elastic_i = 0.0, stiffening_i = 0.0;
+      double own_spin_i = 0.0, generated_i = 0.0, dissipated_i = 0.0, elastic_i = 0.0, spring_source_i = 0.0;
+      Vec3 rolling_i;
+      double rolling_wall_power_i = 0.0;
       WallShare* __restrict wall_share = block_wall + (i / block_size) * n_bodies;
       double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
       if constexpr (Heat) {
@@ -512,7 +553,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         if (audit) {
           dissipated_i += f.dissipated_power_W;
           elastic_i += f.elastic_energy_J;
-          stiffening_i += f.stiffening_power_W;
+          spring_source_i += f.spring_source_W;
+          rolling_i += f.rolling_torque_on_i_N_m;
+          share_rolling[k] = -f.rolling_torque_on_i_N_m;
         }
         const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
         double heat_j = 0.0;
@@ -583,7 +626,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         if (audit) {
           dissipated_i += f.dissipated_power_W;
           elastic_i += f.elastic_energy_J;
-          stiffening_i += f.stiffening_power_W;
+          spring_source_i += f.spring_source_W;
+          rolling_i += f.rolling_torque_on_i_N_m;
+          rolling_wall_power_i += dot(f.rolling_torque_on_i_N_m, wall_omega);
         }
         // The wall's work on the particle: its force at the surface's velocity, and the
         // relative-spin rolling torque at the wall's spin (the reaction it feels).
@@ -626,12 +671,17 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       energy.generated_heat_W += generated_i;
       energy.dissipated_W += dissipated_i;
       energy.elastic_J += elastic_i;
-      energy.stiffening_W += stiffening_i;
+      energy.spring_source_W += spring_source_i;
+      if (audit) {
+        rolling[i] = rolling_i;
+        rolling_wall_power[i] = rolling_wall_power_i;
+      }
     }
 #pragma omp barrier
     for (std::uint32_t j = begin; j < end; ++j) {
       Vec3 force_j, torque_j;
       double heat_j = 0.0, own_spin_j = 0.0;
+      Vec3 rolling_j;
       for (std::uint32_t r = owner_offset[j]; r < owner_offset[j + 1]; ++r) {
         const std::uint32_t k = owner_entry[r];
         if (!touching[k]) continue;
@@ -639,26 +689,19 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         torque_j += share[k].torque_N_m;
         if (own_spin_rolling) own_spin_j += share_own_spin[k];
         if constexpr (Heat) heat_j += share_heat[k];
+        if (audit) rolling_j += share_rolling[k];
       }
       force[j] += force_j;
       torque[j] += torque_j;
       own_spin[j] += own_spin_j;
       if constexpr (Heat) heat[j] += heat_j;
       // EDEM's own-spin rolling, once the particle's resistance is summed (RollingOwnSpin).
-      // It resists the particle's own spin, so what it takes is the particle's alone.
       if (own_spin[j] > 0.0) {
-        const Vec3 rolling = RollingOwnSpin::torque(w[j], own_spin[j], inv_inertia[j], dt);
-        torque[j] += rolling;
-        // At the spin it leaves at the step's end (as for the relative-spin torque).
-        const double loss = -dot(rolling, w[j]) - 0.5 * norm2(rolling) * dt * inv_inertia[j];
-        if (audit) block_energy[j / block_size].dissipated_W += loss;
-        if constexpr (Heat) {
-          if (generate && all_losses) {
-            heat[j] += loss;
-            block_energy[j / block_size].generated_heat_W += loss;
-          }
-        }
+        const Vec3 own_spin_torque = RollingOwnSpin::torque(w[j], own_spin[j], inv_inertia[j], dt);
+        torque[j] += own_spin_torque;
+        rolling_j += own_spin_torque;
       }
+      if (audit) rolling[j] += rolling_j;
     }
   }
 

@@ -44,7 +44,7 @@ struct Domain {
 struct HeatSettings {
   bool enabled = false;
   double time_scale_factor = 1.0;  // S: every conductance x S, for compressed mechanical time
-  // Heat generated at contacts (docs/physics.md, "Heat from dissipation"): the sliding
+  // Heat generated at contacts (docs/physics.md, "Friction heat and its partition"): the sliding
   // power only (friction_heating), or every loss of contacts and bonds (dissipation_heating).
   bool friction_heating = false;
   bool dissipation_heating = false;
@@ -136,6 +136,9 @@ class Simulation {
   /// Sum of m_i h_i(T_i) over particles (h = integral of c from 0 K) plus C_w T_w of lumped walls.
   double thermal_energy_J() const;
   const ThermalLedger& thermal_ledger() const { return ledger_; }
+  /// Whether the mechanical energy books are kept: settings().energy_audit, or dissipation
+  /// heating, which needs the losses.
+  bool keeps_energy_audit() const { return settings_.energy_audit || (heat_enabled() && settings_.heat.dissipation_heating); }
   /// The mechanical energy books (sim/energy_audit.hpp), kept whether heat is on or not.
   const EnergyAudit& energy_audit() const { return audit_; }
   /// Elastic energy stored now: the contacts' springs (at the last contact pass) and the bonds.
@@ -229,6 +232,9 @@ class Simulation {
   /// Adds the bonds' forces, torques and heat to the particles (after the contact
   /// pass); dt_s = 0 re-evaluates the stored loads without advancing them.
   void apply_bonds(double dt_s);
+  /// The rolling torques' losses of the pass just done, once the bonds have added their
+  /// torques: each particle's rolling torque at the spin the step will end with.
+  void book_rolling_losses();
   /// Books the last pass's wall power and losses over dt_s into the audit.
   void book_mechanical_energy(double dt_s);
   /// Kinetic and potential energy of one particle (what insertion brings, a loss takes).
@@ -269,9 +275,13 @@ class Simulation {
   };
   std::vector<WallShare> block_wall_share_;  // blocks x wall bodies
   struct BlockEnergy {  // per block of owners, summed in order
-    double generated_heat_W = 0.0, dissipated_W = 0.0, elastic_J = 0.0, stiffening_W = 0.0;
+    double generated_heat_W = 0.0, dissipated_W = 0.0, elastic_J = 0.0, spring_source_W = 0.0;
   };
   std::vector<BlockEnergy> block_energy_;
+  // With the audit: per particle, the rolling torques on it (both models) and what the
+  // walls' spins put into them (tau . omega_wall); per pair entry, the partner's torque.
+  std::vector<Vec3> rolling_torque_N_m_, partner_rolling_N_m_;
+  std::vector<double> rolling_wall_power_W_;
   // Per particle, with a partition by conductivity or effusivity: its weight (heat_partition.hpp).
   std::vector<double> partition_weight_;
   // Per particle, each contact pass: the summed own-spin rolling resistance (RollingOwnSpin).
@@ -282,13 +292,13 @@ class Simulation {
     std::vector<char> touched;
   };
   std::vector<MeshScratch> mesh_scratch_;
-  // The last pass's sums (contacts, then bonds added in apply_bonds).
+  // The last pass's sums (contacts, then the bonds' and the rolling torques' additions).
   std::vector<double> wall_generated_heat_W_;  // per wall body: generated heat the wall takes
   std::vector<double> wall_power_W_;           // per wall body: its power into the particles
   double generated_heat_W_ = 0.0;              // heat generated at all contacts and bonds
   double dissipated_power_W_ = 0.0;            // every loss, heat on or off
   double contact_elastic_energy_J_ = 0.0;      // stored in the contacts' springs
-  double stiffening_power_W_ = 0.0;            // the tangential springs' stiffening (EnergyAudit)
+  double spring_source_W_ = 0.0;            // the tangential springs' own source (EnergyAudit)
   std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0
   std::vector<char> conductivity_varies_;      // per material: k is a table
   std::vector<WallContactHeat> wall_contact_heat_;  // per wall body, taken at each contact pass

@@ -353,13 +353,14 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
     w.put(audit_.wall_work_J);
     w.put(audit_.dissipated_J);
     w.put(audit_.exchanged_J);
-    w.put(audit_.stiffening_J);
+    w.put(audit_.spring_source_J);
     w.put_vector(audit_.wall_work_by_body_J);
     w.put(dissipated_power_W_);
-    w.put(stiffening_power_W_);
+    w.put(spring_source_W_);
     w.put(contact_elastic_energy_J_);
     w.put_vector(wall_power_W_);
     w.put(static_cast<std::uint8_t>(audit_awaits_contact_elastic_));
+    w.put(static_cast<std::uint8_t>(keeps_energy_audit()));
     checkpoint.add(kEnergyAudit, 1, std::move(w));
   }
 }
@@ -472,23 +473,27 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     for (std::size_t b = 0; b < bonds_.size(); ++b)
       if (bonds_.local_i[b] >= n || bonds_.local_j[b] >= n) r.fail("has a bond to a particle that does not exist");
   }
+  bool books_kept = false;
   if (checkpoint.has(kEnergyAudit)) {
     ByteReader r = checkpoint.reader(kEnergyAudit);
     r.get(audit_.wall_work_J);
     r.get(audit_.dissipated_J);
     r.get(audit_.exchanged_J);
-    r.get(audit_.stiffening_J);
+    r.get(audit_.spring_source_J);
     r.get_vector(audit_.wall_work_by_body_J);
     r.get(dissipated_power_W_);
-    r.get(stiffening_power_W_);
+    r.get(spring_source_W_);
     r.get(contact_elastic_energy_J_);
     r.get_vector(wall_power_W_);
     audit_awaits_contact_elastic_ = r.get<std::uint8_t>() != 0;
+    books_kept = r.at_end() || r.get<std::uint8_t>() != 0;  // d5f098e wrote no flag: its books were kept
     if (audit_.wall_work_by_body_J.size() != walls.bodies.size() || wall_power_W_.size() != walls.bodies.size())
       r.fail("holds another number of walls");
-  } else {
-    // Written before the audit existed: its books open here, with the energy the
-    // particles have now (the springs' share joins at the next contact pass).
+  }
+  if (!books_kept && keeps_energy_audit()) {
+    // Written before the audit existed, or by a run that did not keep it: the books open
+    // here, with the energy the particles have now (the springs' share joins at the next
+    // contact pass).
     audit_ = EnergyAudit{};
     audit_.wall_work_by_body_J.assign(walls.bodies.size(), 0.0);
     for (std::size_t i = 0; i < n; ++i) audit_.exchanged_J += particle_mechanical_energy_J(i);

@@ -137,6 +137,18 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
     if (spun(wall)) columns.push_back({wall.name + ".drive_torque", "N m"});
   }
   if (sim.bonds_configured()) columns.insert(columns.end(), {{"bonds_intact", "-"}, {"bonds_broken", "-"}});
+  if (sim.keeps_energy_audit()) {
+    // The energy audit (docs/physics.md, "Energy audit"): kinetic + potential + elastic =
+    // wall work + exchanged + spring source - dissipated, up to the imbalance.
+    columns.insert(columns.end(), {{"elastic_energy", "J"},
+                                   {"wall_work", "J"},
+                                   {"dissipated_energy", "J"},
+                                   {"spring_source", "J"},
+                                   {"exchanged_energy", "J"},
+                                   {"mechanical_imbalance", "-"}});
+    for (const WallBody& wall : sim.walls.bodies)
+      if (fed(wall) || spun(wall)) columns.push_back({wall.name + ".work", "J"});  // on the particles, so far
+  }
   if (!sim.heat_enabled()) return columns;
   columns.insert(columns.end(), {{"temperature_mean", "K"},
                                  {"temperature_min", "K"},
@@ -189,6 +201,13 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
   if (sim.bonds_configured()) {
     const BondCounts bonds = sim.bond_counts();
     row.insert(row.end(), {static_cast<double>(bonds.intact), static_cast<double>(bonds.broken())});
+  }
+  if (sim.keeps_energy_audit()) {
+    const EnergyAudit& audit = sim.energy_audit();
+    row.insert(row.end(), {sim.elastic_energy_J(), audit.wall_work_J, audit.dissipated_J, audit.spring_source_J,
+                           audit.exchanged_J, audit.relative(sim.mechanical_imbalance_J())});
+    for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b)
+      if (fed(sim.walls.bodies[b]) || spun(sim.walls.bodies[b])) row.push_back(audit.wall_work_by_body_J[b]);
   }
   if (!sim.heat_enabled()) return row;
   double sum = 0.0, lowest = std::numeric_limits<double>::quiet_NaN(), highest = lowest;

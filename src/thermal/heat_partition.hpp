@@ -1,6 +1,6 @@
 #pragma once
 // How the heat generated at a contact is shared between its two bodies
-// (docs/physics.md, "Heat from dissipation"). Each body has a weight and takes
+// (docs/physics.md, "Friction heat and its partition"). Each body has a weight and takes
 // w_a / (w_a + w_b) of the heat:
 //   equal:        w = 1, half each;
 //   fixed:        a particle at a wall takes a set fraction, two particles half each;

@@ -71,6 +71,8 @@ void expect_identical(const Simulation& a, const Simulation& b) {
   EXPECT_EQ(a.energy_audit().wall_work_by_body_J, b.energy_audit().wall_work_by_body_J);
   EXPECT_EQ(a.energy_audit().dissipated_J, b.energy_audit().dissipated_J);
   EXPECT_EQ(a.energy_audit().exchanged_J, b.energy_audit().exchanged_J);
+  EXPECT_EQ(a.energy_audit().spring_source_J, b.energy_audit().spring_source_J);
+  EXPECT_EQ(a.energy_audit().wall_work_J, b.energy_audit().wall_work_J);
   EXPECT_EQ(a.elastic_energy_J(), b.elastic_energy_J());
 }
 

@@ -16,7 +16,10 @@ namespace regodem {
 
 template <class Normal, class Damping, class Tangential, class RelativeRolling, class OwnSpinRolling>
 struct ContactLaw {
-  /// Forces of one contact in overlap; updates the tangential history.
+  /// Forces of one contact in overlap; updates the tangential history. Audit: also the
+  /// losses, the springs' energy and the spring source (a few more flops per contact,
+  /// only for runs that keep the energy books).
+  template <bool Audit = false>
   [[gnu::always_inline]] static ContactForces evaluate(const ContactPairParameters& p, const ContactGeometry& c,
                                 Vec3& tangential_history_m) {
     const auto normal = Normal::evaluate(p.effective_youngs_modulus_Pa, c.effective_radius_m, c.overlap_m);
@@ -34,7 +37,7 @@ struct ContactLaw {
     const double tangential_damping =
         Damping::coefficient(p.damping_factor, tangential_stiffness, c.effective_mass_kg);
     bool sliding = false;
-    const double spring_before_m2 = norm2(tangential_history_m);  // its turn into the new plane keeps the length
+    const double spring_before_m2 = Audit ? norm2(tangential_history_m) : 0.0;  // its turn into the plane keeps it
     const Vec3 tangential = Tangential::evaluate(
         tangential_history_m, c.normal, tangential_velocity, tangential_stiffness, tangential_damping,
         p.sliding_friction * std::max(normal_force, 0.0), c.slip_time_s, sliding);
@@ -51,18 +54,20 @@ struct ContactLaw {
     // (Mindlin k_t = 8 G* a; the overlap a step ago is delta less the approach over it), and
     // the reset while sliding, xi = -(F_t + gamma_t v_t)/k_t, can leave it holding energy no
     // force put in (where gamma_t |v_t| > mu F_n it points against the slip).
-    const double spring_after_m2 = norm2(tangential_history_m);
-    const double earlier_stiffness = Tangential::stiffness(
-        p.effective_shear_modulus_Pa,
-        Normal::contact_radius_m(c.effective_radius_m, std::max(c.overlap_m - approach_speed * c.slip_time_s, 0.0)));
-    const double tangential_work_W = -dot(tangential, tangential_velocity);
-    const double spring_change_W = 0.5 * tangential_stiffness * (spring_after_m2 - spring_before_m2) / c.time_step_s;
-    const double tangential_loss_W = std::max(sliding ? tangential_work_W : tangential_work_W - spring_change_W, 0.0);
-    out.spring_source_W = 0.5 * (tangential_stiffness - earlier_stiffness) * spring_before_m2 / c.time_step_s +
-                          spring_change_W + tangential_loss_W - tangential_work_W;
-    out.dissipated_power_W = (normal_force - normal.elastic_force_N) * approach_speed + tangential_loss_W;
-    out.elastic_energy_J =
-        Normal::stored_energy_J(normal.elastic_force_N, c.overlap_m) + 0.5 * tangential_stiffness * spring_after_m2;
+    if constexpr (Audit) {
+      const double spring_after_m2 = norm2(tangential_history_m);
+      const double earlier_stiffness = Tangential::stiffness(
+          p.effective_shear_modulus_Pa,
+          Normal::contact_radius_m(c.effective_radius_m, std::max(c.overlap_m - approach_speed * c.slip_time_s, 0.0)));
+      const double tangential_work_W = -dot(tangential, tangential_velocity);
+      const double spring_change_W = 0.5 * tangential_stiffness * (spring_after_m2 - spring_before_m2) / c.time_step_s;
+      const double tangential_loss_W = std::max(sliding ? tangential_work_W : tangential_work_W - spring_change_W, 0.0);
+      out.spring_source_W = 0.5 * (tangential_stiffness - earlier_stiffness) * spring_before_m2 / c.time_step_s +
+                            spring_change_W + tangential_loss_W - tangential_work_W;
+      out.dissipated_power_W = (normal_force - normal.elastic_force_N) * approach_speed + tangential_loss_W;
+      out.elastic_energy_J =
+          Normal::stored_energy_J(normal.elastic_force_N, c.overlap_m) + 0.5 * tangential_stiffness * spring_after_m2;
+    }
     out.tangential_force_on_i_N = tangential;
     out.force_on_i_N = tangential - normal_force * c.normal;
     // Rolling: chosen per material pair (EDEM's own-spin model, or the relative spin).

@@ -373,10 +373,12 @@ void Simulation::report_blow_up(const std::string& what, double at_time_s, std::
 
 void Simulation::compute_forces(double slip_time_s) {
   // Heat off costs nothing: the pair loop is compiled twice.
+  // Heat off, or the energy books not kept, costs nothing: the pair loop is compiled for each.
+  const bool books = keeps_energy_audit();
   if (heat_enabled())
-    compute_forces_and_heat<true>(slip_time_s);
+    books ? compute_forces_and_heat<true, true>(slip_time_s) : compute_forces_and_heat<true, false>(slip_time_s);
   else
-    compute_forces_and_heat<false>(slip_time_s);
+    books ? compute_forces_and_heat<false, true>(slip_time_s) : compute_forces_and_heat<false, false>(slip_time_s);
   if (!bonds_.empty()) apply_bonds(slip_time_s);
   if (!rolling_torque_N_m_.empty()) book_rolling_losses();
   // The losses and stored energy of contacts and bonds, block by block in order.
@@ -389,7 +391,7 @@ void Simulation::compute_forces(double slip_time_s) {
   }
 }
 
-template <bool Heat>
+template <bool Heat, bool Audit>
 void Simulation::compute_forces_and_heat(double slip_time_s) {
   const int threads = active_threads_;
   const double dt = settings_.time_step_s;
@@ -452,7 +454,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const bool all_losses = settings_.heat.dissipation_heating;
   const HeatPartitionModel partition = settings_.heat.partition;
   const double fixed_wall_share = settings_.heat.friction_partition;
-  const bool audit = keeps_energy_audit();
+  constexpr bool audit = Audit;
   const bool weighted = generate && (partition == HeatPartitionModel::conductivity ||
                                      partition == HeatPartitionModel::effusivity);
   if (weighted) fill_partition_weights();
@@ -545,12 +547,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
         const MaterialIndex mat_j = material[j];
-        const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, mat_j), c, history[k]);
+        const ContactForces f = HertzMindlinLaw::evaluate<Audit>(table(mat_i, mat_j), c, history[k]);
         const Vec3 lever = cross(normal, f.tangential_force_on_i_N);
         force_i += f.force_on_i_N;
         torque_i += lever * arm_i + f.rolling_torque_on_i_N_m;
         own_spin_i += f.own_spin_resistance_i_N_m;
-        if (audit) {
+        if constexpr (audit) {
           dissipated_i += f.dissipated_power_W;
           elastic_i += f.elastic_energy_J;
           spring_source_i += f.spring_source_W;
@@ -600,7 +602,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         c.inv_inertia_i = inv_ii;
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
-        const ContactForces f = HertzMindlinLaw::evaluate(table(mat_i, wall_material), c, wall_spring);
+        const ContactForces f = HertzMindlinLaw::evaluate<Audit>(table(mat_i, wall_material), c, wall_spring);
         if constexpr (Heat) {
           const WallContactHeat& wh = wall_heat[body];
           if (wh.conducts) {
@@ -623,7 +625,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         // EDEM's own-spin rolling torque is not booked on the wall (its default: the wall
         // torque would depend on the mesh size); the relative-spin one is, as a reaction.
         own_spin_i += f.own_spin_resistance_i_N_m;
-        if (audit) {
+        if constexpr (audit) {
           dissipated_i += f.dissipated_power_W;
           elastic_i += f.elastic_energy_J;
           spring_source_i += f.spring_source_W;
@@ -632,7 +634,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         }
         // The wall's work on the particle: its force at the surface's velocity, and the
         // relative-spin rolling torque at the wall's spin (the reaction it feels).
-        if (audit)
+        if constexpr (audit)
           wall_share[body].power_W += dot(f.force_on_i_N, surface_velocity) + dot(f.rolling_torque_on_i_N_m, wall_omega);
         wall_share[body].force_N -= f.force_on_i_N;
         wall_share[body].torque_N_m +=
@@ -672,7 +674,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       energy.dissipated_W += dissipated_i;
       energy.elastic_J += elastic_i;
       energy.spring_source_W += spring_source_i;
-      if (audit) {
+      if constexpr (audit) {
         rolling[i] = rolling_i;
         rolling_wall_power[i] = rolling_wall_power_i;
       }
@@ -689,7 +691,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         torque_j += share[k].torque_N_m;
         if (own_spin_rolling) own_spin_j += share_own_spin[k];
         if constexpr (Heat) heat_j += share_heat[k];
-        if (audit) rolling_j += share_rolling[k];
+        if constexpr (audit) rolling_j += share_rolling[k];
       }
       force[j] += force_j;
       torque[j] += torque_j;
@@ -701,7 +703,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         torque[j] += own_spin_torque;
         rolling_j += own_spin_torque;
       }
-      if (audit) rolling[j] += rolling_j;
+      if constexpr (audit) rolling[j] += rolling_j;
     }
   }
 

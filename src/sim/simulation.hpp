@@ -218,7 +218,7 @@ class Simulation {
   /// particle's squared half of the skin (NeighborSkin; above 1: rebuild).
   double first_half_kick_and_drift();
   void second_half_kick();
-  template <bool Heat>
+  template <bool Heat, bool Audit>
   void compute_forces_and_heat(double slip_time_s);
   /// Advances particle and wall temperatures by dt with the heat flows of the last pass.
   void update_temperatures(double dt_s);

@@ -189,8 +189,8 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   summary.scenario_copy = scenario_copy_file;
   summary.overrides = options.overrides;
   const HeatSettings& heat = prepared.simulation().settings().heat;
-  summary.heat = {heat.enabled, heat.time_scale_factor, heat.friction_heating, to_string(heat.partition),
-                  heat.friction_partition};
+  summary.heat = {heat.enabled,      heat.time_scale_factor, heat.friction_heating, heat.dissipation_heating,
+                  to_string(heat.partition), heat.friction_partition};
   const Simulation& sim = prepared.simulation();
   if (sim.keeps_energy_audit()) {
     const EnergyAudit& audit = sim.energy_audit();

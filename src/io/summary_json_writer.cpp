@@ -145,6 +145,7 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
   json["heat"] = {{"enabled", summary.heat.enabled},
                   {"time_scale_factor", number_or_null(summary.heat.time_scale_factor)},
                   {"friction_heating", summary.heat.friction_heating},
+                  {"dissipation_heating", summary.heat.dissipation_heating},
                   {"heat_partition", summary.heat.heat_partition},
                   {"friction_partition", number_or_null(summary.heat.friction_partition)}};
   if (summary.energy_audit) {

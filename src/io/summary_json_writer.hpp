@@ -37,6 +37,7 @@ struct HeatSummary {
   bool enabled = false;
   double time_scale_factor = 1.0;
   bool friction_heating = false;
+  bool dissipation_heating = false;
   std::string heat_partition = "fixed";
   double friction_partition = 0.5;
 };

@@ -21,7 +21,8 @@ void read_heat(const YamlSection& root, ScenarioReferences& references, Scenario
   spec.heat.enabled = true;
   const auto section = value->section();
   if (!section) return;
-  section->allow_only({"enabled", "time_scale_factor", "friction_heating", "heat_partition", "friction_partition"});
+  section->allow_only({"enabled", "time_scale_factor", "friction_heating", "dissipation_heating", "heat_partition",
+                       "friction_partition"});
   HeatSpec& heat = spec.heat;
   heat.where = value->where();
   // The section's presence turns heat on; `enabled: false` keeps the settings but
@@ -32,6 +33,11 @@ void read_heat(const YamlSection& root, ScenarioReferences& references, Scenario
                             Presence::optional, is_positive, "be greater than 0")
           .value_or(heat.time_scale_factor);
   heat.friction_heating = section->boolean("friction_heating").value_or(false);
+  heat.dissipation_heating = section->boolean("dissipation_heating").value_or(false);
+  if (heat.friction_heating && heat.dissipation_heating)
+    if (const auto key = section->get("dissipation_heating"))
+      key->error("friction_heating and dissipation_heating are both on: dissipation heating already turns the "
+                 "sliding power into heat, with every other loss; keep one");
   if (const auto partition = section->get("heat_partition"))
     heat.heat_partition = partition->choice({"equal", "fixed", "conductivity", "effusivity"}).value_or(heat.heat_partition);
   heat.friction_partition =
@@ -65,7 +71,8 @@ void check_heat_requirements(const ScenarioSpec& spec, const ScenarioReferences&
   // A partition by conductivity or effusivity weighs the wall too: a wall that takes heat
   // (fixed or lumped) needs the properties of its material (its own conductivity will do).
   const std::string& partition = spec.heat.heat_partition;
-  if (!spec.heat.friction_heating || (partition != "conductivity" && partition != "effusivity"))
+  if (!(spec.heat.friction_heating || spec.heat.dissipation_heating) ||
+      (partition != "conductivity" && partition != "effusivity"))
     return;
   for (const WallSpec& wall : spec.walls) {
     if (wall.thermal.mode == WallThermalModeSpec::adiabatic) continue;

@@ -726,8 +726,11 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
                                                   : fmt::format("shared by {}", spec.heat.heat_partition);
     lines.push_back(fmt::format("heat: on, time-scale factor S = {:.4g}, heat generated at contacts: {}",
                                 spec.heat.time_scale_factor,
-                                spec.heat.friction_heating ? fmt::format("the sliding power ({})", partition)
-                                                           : std::string("none")));
+                                spec.heat.dissipation_heating
+                                    ? fmt::format("every loss of contacts and bonds ({}; the energy audit is kept)",
+                                                  partition)
+                                : spec.heat.friction_heating ? fmt::format("the sliding power ({})", partition)
+                                                             : std::string("none")));
     for (std::size_t i = 0; i < materials.size(); ++i) {
       if (!particle_material[i]) continue;
       const Material& m = materials[static_cast<MaterialIndex>(i)];
@@ -858,6 +861,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   settings.heat.time_scale_factor = spec.heat.time_scale_factor;
   settings.heat.friction_heating = spec.heat.friction_heating;
   settings.heat.friction_partition = spec.heat.friction_partition;
+  settings.heat.dissipation_heating = spec.heat.enabled && spec.heat.dissipation_heating;
   settings.energy_audit = spec.output.energy_audit;
   settings.heat.partition = heat_partition_model(spec.heat.heat_partition);
   settings.heat.track_thermal_history = spec.heat.enabled && spec.measurements.thermal_history;

@@ -283,6 +283,7 @@ struct HeatSpec {
   bool enabled = false;               // true when the section is present, unless `enabled: false`
   double time_scale_factor = 1.0;     // S: every conductance is multiplied by it
   bool friction_heating = false;      // the sliding power heats the two bodies
+  bool dissipation_heating = false;   // every loss of contacts and bonds does
   std::string heat_partition = "fixed";  // equal | fixed | conductivity | effusivity
   double friction_partition = 0.5;    // `fixed`: the particle's share at a wall
   SourceLocation where;

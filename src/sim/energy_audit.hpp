@@ -7,9 +7,8 @@
 // spring's energy gains without a force's work: as its stiffness follows the overlap,
 // and at its reset while sliding (contact/contact_law.hpp). It is the contact model's
 // own, and the audit reports it rather than hide it in the imbalance.
-// With the engine's dissipation heating (HeatSettings::dissipation_heating, not a scenario
-// key yet) every joule of `dissipated` is heat, booked in the thermal ledger as generated
-// heat, so the two books meet.
+// With heat.dissipation_heating every joule of `dissipated` is heat, booked in the thermal
+// ledger as generated heat, so the two books meet.
 #include <vector>
 
 namespace regodem {

@@ -41,6 +41,19 @@ struct HalfKick {
   }
 };
 
+/// What a tangential spring held when its contact opened this step: k_t |xi|^2 / 2 at the
+/// overlap of a step ago, delta - v_n dt (delta < 0 now, v_n > 0 closing). The sliding
+/// reset can leave a spring holding energy that does not fade with the overlap
+/// (contact_law.hpp); the audit books its leaving as the spring source's.
+double opened_spring_energy_J(const ContactPairParameters& p, const Vec3& spring_m, double effective_radius_m,
+                              double overlap_m, double approach_speed_m_per_s, double dt_s) {
+  const double earlier_overlap_m = overlap_m - approach_speed_m_per_s * dt_s;
+  if (!(earlier_overlap_m > 0.0)) return 0.0;
+  const double stiffness = MindlinTangential::stiffness(
+      p.effective_shear_modulus_Pa, HertzNormal::contact_radius_m(effective_radius_m, earlier_overlap_m));
+  return 0.5 * stiffness * norm2(spring_m);
+}
+
 /// The tangential spring of a mesh contact lives with a triangle's list entry. When a
 /// sphere rolls or slides across an edge its contact moves to the next triangle, whose
 /// entry has no spring yet: the spring moves with it from the entry that just lost its
@@ -164,29 +177,38 @@ void Simulation::step() {
   if (heat_enabled()) update_temperatures(settings_.time_step_s);
 }
 
-void Simulation::book_rolling_losses() {
-  // A rolling torque tau on a particle does the work tau . omega over the step at the
-  // spin the step ends with, omega + T dt / (2 I) with T every torque on it (velocity
-  // Verlet): the cap that stops a spin in one step then takes its energy, I omega^2 / 2,
-  // and not twice it, and several capped contacts that reverse a spin give back what the
-  // reversal makes. At a wall the wall's spin adds tau_r . omega_w (its own work). The loss
-  // heats the particle that lost it, with dissipation heating (docs/physics.md).
+void Simulation::book_end_of_step_losses() {
+  // A force evaluated at step n+1 does its work, in velocity Verlet, at the velocity the
+  // step ends with, v + F dt / (2m) with F every force on the body (and omega + T dt/(2I)).
+  // A rolling torque's loss is taken whole here: the cap that stops a spin in one step
+  // then takes its energy, I omega^2 / 2, not twice it, and several capped contacts that
+  // reverse a spin give back what the reversal makes; at a wall the wall's spin adds
+  // tau_r . omega_w (its own work). The contact pass took damping and friction at the
+  // half-step velocities; their end-of-step part, -G . F dt/(2m) - Lambda . T dt/(2I)
+  // with G and Lambda the lossy forces and torques on the body, is added here (at a few
+  // steps per contact it is tens of per cent of the loss). It heats the particle whose
+  // velocity it concerns, with dissipation heating (docs/physics.md, "Energy audit").
   const std::size_t n = particles.size();
   const double half_dt = 0.5 * settings_.time_step_s;
   const bool heats = heat_enabled() && settings_.heat.dissipation_heating;
-  const Vec3* __restrict rolling = rolling_torque_N_m_.data();
+  const LossyActions* __restrict lossy = particle_lossy_.data();
   const double* __restrict wall_power = rolling_wall_power_W_.data();
   const Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
+  const Vec3* __restrict force = particles.force_N.data();
   const Vec3* __restrict torque = particles.torque_N_m.data();
+  const double* __restrict inv_mass = particles.inv_mass_per_kg.data();
   const double* __restrict inv_inertia = particles.inv_inertia.data();
   double* __restrict heat = particles.heat_flow_W.data();
   BlockEnergy* __restrict block_energy = block_energy_.data();
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
 #pragma omp parallel for schedule(static, block_size) num_threads(active_threads_) if (n > 4096)
   for (std::size_t p = 0; p < n; ++p) {
-    if (rolling[p] == Vec3{} && wall_power[p] == 0.0) continue;
-    const Vec3 spin_at_end = w[p] + torque[p] * (half_dt * inv_inertia[p]);
-    const double loss = wall_power[p] - dot(rolling[p], spin_at_end);
+    const LossyActions& a = lossy[p];
+    const Vec3 velocity_change = force[p] * (half_dt * inv_mass[p]);
+    const Vec3 spin_change = torque[p] * (half_dt * inv_inertia[p]);
+    const double loss = wall_power[p] - dot(a.rolling_torque_N_m, w[p] + spin_change) -
+                        dot(a.lossy_force_N, velocity_change) - dot(a.lossy_torque_N_m, spin_change);
+    if (loss == 0.0) continue;
     block_energy[p / block_size].dissipated_W += loss;
     if (heats) {
       heat[p] += loss;
@@ -380,7 +402,7 @@ void Simulation::compute_forces(double slip_time_s) {
   else
     books ? compute_forces_and_heat<false, true>(slip_time_s) : compute_forces_and_heat<false, false>(slip_time_s);
   if (!bonds_.empty()) apply_bonds(slip_time_s);
-  if (!rolling_torque_N_m_.empty()) book_rolling_losses();
+  if (!particle_lossy_.empty()) book_end_of_step_losses();
   // The losses and stored energy of contacts and bonds, block by block in order.
   generated_heat_W_ = dissipated_power_W_ = contact_elastic_energy_J_ = spring_source_W_ = 0.0;
   for (const BlockEnergy& e : block_energy_) {
@@ -458,12 +480,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const bool weighted = generate && (partition == HeatPartitionModel::conductivity ||
                                      partition == HeatPartitionModel::effusivity);
   if (weighted) fill_partition_weights();
-  rolling_torque_N_m_.resize(audit ? particles.size() : 0);
+  particle_lossy_.resize(audit ? particles.size() : 0);
   rolling_wall_power_W_.resize(audit ? particles.size() : 0);
-  partner_rolling_N_m_.resize(audit ? neighbors_.partner.size() : 0);
-  Vec3* __restrict rolling = rolling_torque_N_m_.data();
+  partner_lossy_.resize(audit ? neighbors_.partner.size() : 0);
+  LossyActions* __restrict lossy = particle_lossy_.data();
   double* __restrict rolling_wall_power = rolling_wall_power_W_.data();
-  Vec3* __restrict share_rolling = partner_rolling_N_m_.data();
+  LossyActions* __restrict share_lossy = partner_lossy_.data();
   const double* __restrict weight = partition_weight_.data();
   // The particle's share of a wall contact's heat (an adiabatic wall takes none).
   const auto wall_share_of_particle = [&](const WallContactHeat& wh, double weight_i, MaterialIndex wall_material) {
@@ -504,7 +526,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       const MaterialIndex mat_i = material[i];
       Vec3 force_i = gravity * mass[i], torque_i;
       double own_spin_i = 0.0, generated_i = 0.0, dissipated_i = 0.0, elastic_i = 0.0, spring_source_i = 0.0;
-      Vec3 rolling_i;
+      LossyActions lossy_i;
       double rolling_wall_power_i = 0.0;
       WallShare* __restrict wall_share = block_wall + (i / block_size) * n_bodies;
       double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
@@ -522,7 +544,14 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         if (dist2 >= sum_r * sum_r) {
           // Most list entries are not touching and already cleared: reading instead of
           // storing keeps their cache lines clean (no write-back).
-          if (history[k] != Vec3{}) history[k] = {};
+          if (history[k] != Vec3{}) {
+            if constexpr (audit) {  // the spring's energy leaves with it (contact_law.hpp)
+              const double dist = std::sqrt(dist2);
+              spring_source_i -= opened_spring_energy_J(table(mat_i, material[j]), history[k], ri * rj / sum_r,
+                                                        sum_r - dist, dot(vi - v[j], d) / dist, dt) / dt;
+            }
+            history[k] = {};
+          }
           if (touching[k]) touching[k] = 0;
           continue;
         }
@@ -556,8 +585,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           dissipated_i += f.dissipated_power_W;
           elastic_i += f.elastic_energy_J;
           spring_source_i += f.spring_source_W;
-          rolling_i += f.rolling_torque_on_i_N_m;
-          share_rolling[k] = -f.rolling_torque_on_i_N_m;
+          // Damping and friction on i: the force less its elastic normal part.
+          const Vec3 lossy_force = f.force_on_i_N + f.elastic_normal_force_N * normal;
+          lossy_i.rolling_torque_N_m += f.rolling_torque_on_i_N_m;
+          lossy_i.lossy_force_N += lossy_force;
+          lossy_i.lossy_torque_N_m += lever * arm_i;
+          share_lossy[k] = {-f.rolling_torque_on_i_N_m, -lossy_force, lever * arm_j};
         }
         const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
         double heat_j = 0.0;
@@ -629,7 +662,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           dissipated_i += f.dissipated_power_W;
           elastic_i += f.elastic_energy_J;
           spring_source_i += f.spring_source_W;
-          rolling_i += f.rolling_torque_on_i_N_m;
+          lossy_i.rolling_torque_N_m += f.rolling_torque_on_i_N_m;
+          lossy_i.lossy_force_N += f.force_on_i_N + f.elastic_normal_force_N * normal;
+          lossy_i.lossy_torque_N_m += cross(normal, f.tangential_force_on_i_N) * distance_m;
           rolling_wall_power_i += dot(f.rolling_torque_on_i_N_m, wall_omega);
         }
         // The wall's work on the particle: its force at the surface's velocity, and the
@@ -645,7 +680,16 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         const WallPrimitive& wall = primitives[wall_primitive[k]];
         const WallProximity prox = closest_wall_point(wall, xi);
         if (!prox.candidate || prox.distance_m >= ri) {
-          if (wall_history[k] != Vec3{}) wall_history[k] = {};
+          if (wall_history[k] != Vec3{}) {
+            if constexpr (audit) {
+              if (prox.candidate) {
+                const Vec3 surface = bodies[wall.body].motion.surface_velocity(prox.contact_point_m, now);
+                spring_source_i -= opened_spring_energy_J(table(mat_i, wall.material), wall_history[k], ri,
+                                                          ri - prox.distance_m, dot(vi - surface, prox.normal), dt) / dt;
+              }
+            }
+            wall_history[k] = {};
+          }
           continue;
         }
         touch_wall(prox.distance_m, prox.normal, prox.contact_point_m, wall.material, wall.body, wall_history[k]);
@@ -675,7 +719,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       energy.elastic_J += elastic_i;
       energy.spring_source_W += spring_source_i;
       if constexpr (audit) {
-        rolling[i] = rolling_i;
+        lossy[i] = lossy_i;
         rolling_wall_power[i] = rolling_wall_power_i;
       }
     }
@@ -683,7 +727,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     for (std::uint32_t j = begin; j < end; ++j) {
       Vec3 force_j, torque_j;
       double heat_j = 0.0, own_spin_j = 0.0;
-      Vec3 rolling_j;
+      LossyActions lossy_j;
       for (std::uint32_t r = owner_offset[j]; r < owner_offset[j + 1]; ++r) {
         const std::uint32_t k = owner_entry[r];
         if (!touching[k]) continue;
@@ -691,7 +735,11 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         torque_j += share[k].torque_N_m;
         if (own_spin_rolling) own_spin_j += share_own_spin[k];
         if constexpr (Heat) heat_j += share_heat[k];
-        if constexpr (audit) rolling_j += share_rolling[k];
+        if constexpr (audit) {
+          lossy_j.rolling_torque_N_m += share_lossy[k].rolling_torque_N_m;
+          lossy_j.lossy_force_N += share_lossy[k].lossy_force_N;
+          lossy_j.lossy_torque_N_m += share_lossy[k].lossy_torque_N_m;
+        }
       }
       force[j] += force_j;
       torque[j] += torque_j;
@@ -701,9 +749,13 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       if (own_spin[j] > 0.0) {
         const Vec3 own_spin_torque = RollingOwnSpin::torque(w[j], own_spin[j], inv_inertia[j], dt);
         torque[j] += own_spin_torque;
-        rolling_j += own_spin_torque;
+        lossy_j.rolling_torque_N_m += own_spin_torque;
       }
-      if constexpr (audit) rolling[j] += rolling_j;
+      if constexpr (audit) {
+        lossy[j].rolling_torque_N_m += lossy_j.rolling_torque_N_m;
+        lossy[j].lossy_force_N += lossy_j.lossy_force_N;
+        lossy[j].lossy_torque_N_m += lossy_j.lossy_torque_N_m;
+      }
     }
   }
 

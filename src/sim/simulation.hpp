@@ -232,9 +232,11 @@ class Simulation {
   /// Adds the bonds' forces, torques and heat to the particles (after the contact
   /// pass); dt_s = 0 re-evaluates the stored loads without advancing them.
   void apply_bonds(double dt_s);
-  /// The rolling torques' losses of the pass just done, once the bonds have added their
-  /// torques: each particle's rolling torque at the spin the step will end with.
-  void book_rolling_losses();
+  /// The losses that need the velocities the step ends with (velocity Verlet's v + F dt/2m,
+  /// known once the bonds have added their forces): each particle's rolling torques at its
+  /// end-of-step spin, and the end-of-step correction of its contacts' damping and friction
+  /// work, which the contact pass takes at the half-step velocities.
+  void book_end_of_step_losses();
   /// Books the last pass's wall power and losses over dt_s into the audit.
   void book_mechanical_energy(double dt_s);
   /// Kinetic and potential energy of one particle (what insertion brings, a loss takes).
@@ -278,9 +280,13 @@ class Simulation {
     double generated_heat_W = 0.0, dissipated_W = 0.0, elastic_J = 0.0, spring_source_W = 0.0;
   };
   std::vector<BlockEnergy> block_energy_;
-  // With the audit: per particle, the rolling torques on it (both models) and what the
-  // walls' spins put into them (tau . omega_wall); per pair entry, the partner's torque.
-  std::vector<Vec3> rolling_torque_N_m_, partner_rolling_N_m_;
+  // With the audit, per particle: the rolling torques on it (both models), the lossy forces
+  // on it (normal damping and the tangential force) and their torques, and what the walls'
+  // spins put into its rolling torques (tau . omega_wall); per pair entry, the partner's.
+  struct LossyActions {
+    Vec3 rolling_torque_N_m, lossy_force_N, lossy_torque_N_m;
+  };
+  std::vector<LossyActions> particle_lossy_, partner_lossy_;
   std::vector<double> rolling_wall_power_W_;
   // Per particle, with a partition by conductivity or effusivity: its weight (heat_partition.hpp).
   std::vector<double> partition_weight_;

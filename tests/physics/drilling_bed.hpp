@@ -15,6 +15,7 @@ struct DrillingBedOptions {
   double bond_damping_ratio = 0.0;
   RollingModel rolling_model = RollingModel::relative_spin;
   double rolling_friction = 0.1;
+  double rayleigh_fraction = 0.1;  // the step
 };
 
 inline Simulation make_drilling_bed(const DrillingBedOptions& options = {}) {
@@ -24,7 +25,7 @@ inline Simulation make_drilling_bed(const DrillingBedOptions& options = {}) {
   m.restitution = 0.3;
   m.sliding_friction = 0.5;
   m.rolling_friction = options.rolling_friction;
-  const double dt = 0.1 * rayleigh_time_for(m, kRadius);
+  const double dt = options.rayleigh_fraction * rayleigh_time_for(m, kRadius);
   WallSet walls;
   walls.add_cylinder(walls.add_body("cup", {}), {0, 0, -0.004}, {0, 0, 1}, 0.0045, 0.012, true, false, false, false, 0);
   walls.add_plane(walls.add_body("floor", {}), {0, 0, -0.004}, {0, 0, 1}, 0);

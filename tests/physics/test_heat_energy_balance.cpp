@@ -142,10 +142,12 @@ TEST(HeatEnergyBalance, SlidingFrictionHeatMatchesTheDissipatedKineticEnergy) {
   EXPECT_NEAR(lumped.wall_heat_J / lumped.generated_heat_J, 0.7, 1e-9);
 
   // Every loss as heat (the engine's dissipation heating): the same m v0^2 / 7 within
-  // 1 % (the sphere starts at its static overlap: no normal damping to speak of).
+  // 1 % (the sphere starts at its static overlap: no normal damping to speak of). The
+  // partition shares each contact's loss; the end-of-step part of it, a fraction of a
+  // per cent here, heats the particle, so the wall's share is held to 1e-3.
   const SlideResult every_loss = slide(WallThermalMode::lumped, 0.3, true);
   EXPECT_NEAR(every_loss.generated_heat_J / every_loss.expected_J, 1.0, 0.01);
-  EXPECT_NEAR(every_loss.wall_heat_J / every_loss.generated_heat_J, 0.7, 1e-9);
+  EXPECT_NEAR(every_loss.wall_heat_J / every_loss.generated_heat_J, 0.7, 1e-3);
 }
 
 }  // namespace

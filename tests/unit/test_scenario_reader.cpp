@@ -1100,6 +1100,28 @@ TEST(ScenarioReaderHeat, HeatSectionValues) {
   EXPECT_EQ(error_of(with(kHeat, "friction_partition: 0.7", "friction_partition: 0")), "");  // all to the wall
 }
 
+// heat_partition and dissipation_heating (docs/scenario-format.md, `heat`): the model is
+// read; dissipation heating with friction heating is refused; a partition that weighs the
+// walls needs the properties of the material of every wall that takes heat (the plate is
+// steel, which has a conductivity but no specific heat).
+TEST(ScenarioReaderHeat, HeatPartitionAndDissipationHeating) {
+  const auto heat = [](const std::string& lines) {
+    return with(kHeat, "  friction_partition: 0.7\n", "  friction_partition: 0.7\n" + lines);
+  };
+  EXPECT_EQ(read_scenario_string(kHeat, kFile).heat.heat_partition, "fixed");
+  EXPECT_EQ(read_scenario_string(heat("  heat_partition: conductivity\n"), kFile).heat.heat_partition,
+            "conductivity");
+  expect_problem(heat("  heat_partition: effusivity\n"), "- name: plate", "walls.plate",
+                 "heat.heat_partition: effusivity weighs the wall 'plate' by its material 'steel', which needs "
+                 "'specific_heat'");
+  expect_problem(heat("  heat_partition: by_area\n"), "by_area", "heat.heat_partition", "conductivity");
+  expect_problem(heat("  dissipation_heating: true\n"), "dissipation_heating", "heat.dissipation_heating", "keep one");
+  const ScenarioSpec losses =
+      read_scenario_string(with(heat("  dissipation_heating: true\n"), "  friction_heating: true\n", ""), kFile);
+  EXPECT_TRUE(losses.heat.dissipation_heating);
+  EXPECT_FALSE(losses.heat.friction_heating);
+}
+
 TEST(ScenarioReaderHeat, StaticStages) {
   expect_problem(with(kHeat, "    duration: 10 s\n", "    until: settled\n    kinetic_energy_per_particle: 1e-12 J\n"),
                  "until: settled", "stages.heat.until", "give its 'duration'");

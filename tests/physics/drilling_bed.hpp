@@ -16,6 +16,7 @@ struct DrillingBedOptions {
   RollingModel rolling_model = RollingModel::relative_spin;
   double rolling_friction = 0.1;
   double rayleigh_fraction = 0.1;  // the step
+  bool energy_audit = true;
 };
 
 inline Simulation make_drilling_bed(const DrillingBedOptions& options = {}) {
@@ -38,7 +39,7 @@ inline Simulation make_drilling_bed(const DrillingBedOptions& options = {}) {
   walls.add_mesh(paddle, box_mesh({-0.0025, -0.0006, 0.0}, {0.0025, 0.0006, 0.004}, "paddle"), 0);
   SimulationSettings settings = settings_for(kRadius, dt, {0, 0, -9.81}, 0.02, options.threads);
   settings.min_particles_per_thread = 50;  // up to 4 threads work on this small bed
-  settings.energy_audit = true;           // its books too must not depend on threads or a restart
+  settings.energy_audit = options.energy_audit;  // its books too must not depend on threads or a restart
   settings.heat.enabled = true;
   settings.heat.time_scale_factor = 1e3;
   settings.heat.friction_heating = !options.dissipation_heating;

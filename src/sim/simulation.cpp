@@ -9,6 +9,7 @@
 
 #include "contact/contact_law.hpp"
 #include "core/error.hpp"
+#include "geometry/mesh_contact.hpp"
 #include "sim/overlap_scan.hpp"
 
 namespace regodem {
@@ -58,9 +59,12 @@ double opened_spring_energy_J(const ContactPairParameters& p, const Vec3& spring
 /// sphere rolls or slides across an edge its contact moves to the next triangle, whose
 /// entry has no spring yet: the spring moves with it from the entry that just lost its
 /// touch, if that triangle shares a vertex with the new one. Springs of entries not
-/// touching are then cleared, as for every other contact.
+/// touching are then cleared, as for every other contact; `cleared(entry, spring)` is
+/// told of each (the energy audit books what it held).
+template <class OnCleared>
 void carry_mesh_springs(const TriangleMesh& mesh, const std::uint32_t* triangles, std::uint32_t count,
-                        const std::vector<MeshTouch>& touches, Vec3* spring, std::vector<char>& touched) {
+                        const std::vector<MeshTouch>& touches, Vec3* spring, std::vector<char>& touched,
+                        OnCleared&& cleared) {
   touched.assign(count, 0);
   for (const MeshTouch& t : touches) touched[t.entry] = 1;
   const auto share_a_vertex = [&](std::uint32_t a, std::uint32_t b) {
@@ -79,7 +83,10 @@ void carry_mesh_springs(const TriangleMesh& mesh, const std::uint32_t* triangles
       }
   }
   for (std::uint32_t e = 0; e < count; ++e)
-    if (!touched[e] && spring[e] != Vec3{}) spring[e] = {};
+    if (!touched[e] && spring[e] != Vec3{}) {
+      cleared(e, spring[e]);
+      spring[e] = {};
+    }
 }
 
 }  // namespace
@@ -703,7 +710,29 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           const MeshWall& mesh = meshes[wall_index];
           finder.find(mesh, bodies[mesh.body].pose, mesh_triangle + g, g_end - g, xi, ri, touches);
           Vec3* spring = mesh_history + g;
-          carry_mesh_springs(mesh.mesh, mesh_triangle + g, g_end - g, touches, spring, touched);
+          const RigidPose& pose = bodies[mesh.body].pose;
+          carry_mesh_springs(mesh.mesh, mesh_triangle + g, g_end - g, touches, spring, touched,
+                             [&](std::uint32_t e, const Vec3& cleared_spring) {
+                               if constexpr (audit) {  // what it held leaves with it (as for pairs)
+                                 const auto& corners = mesh.mesh.triangles[mesh_triangle[g + e]];
+                                 const Vec3 point = closest_point_on_triangle(
+                                                        xi, pose.to_world(mesh.mesh.vertices[corners[0]]),
+                                                        pose.to_world(mesh.mesh.vertices[corners[1]]),
+                                                        pose.to_world(mesh.mesh.vertices[corners[2]]))
+                                                        .point_m;
+                                 const double distance = norm(point - xi);
+                                 if (distance > 0.0) {
+                                   const Vec3 surface = bodies[mesh.body].motion.surface_velocity(point, now);
+                                   spring_source_i -=
+                                       opened_spring_energy_J(table(mat_i, mesh.material), cleared_spring, ri,
+                                                              ri - distance, dot(vi - surface, (point - xi) / distance),
+                                                              dt) /
+                                       dt;
+                                 }
+                               } else {
+                                 (void)e, (void)cleared_spring;
+                               }
+                             });
           for (const MeshTouch& touch : touches)
             touch_wall(touch.distance_m, touch.normal, touch.contact_point_m, mesh.material, mesh.body,
                        spring[touch.entry]);

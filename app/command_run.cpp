@@ -204,7 +204,7 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
     a.relative_imbalance = audit.relative(a.imbalance_J);
     for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b) {
       const WallBody& wall = sim.walls.bodies[b];
-      if (norm2(wall.feed_direction) > 0.0 || norm2(wall.spin_axis) > 0.0)
+      if (wall.fed_or_spun())
         a.wall_work_by_wall_J.emplace_back(wall.name, audit.wall_work_by_body_J[b]);
     }
     summary.energy_audit = a;

@@ -35,6 +35,11 @@ struct WallBody {
   double spin_reach_m = 0.0;
 
   double depth_m() const { return depth_at_start_m + travel_m; }
+  /// A drill's motion: fed along a direction, turned about an axis (the outputs' depth,
+  /// thrust, drive torque and work are given for such walls).
+  bool fed() const { return norm2(feed_direction) > 0.0; }
+  bool spun() const { return norm2(spin_axis) > 0.0; }
+  bool fed_or_spun() const { return fed() || spun(); }
 };
 
 class WallSet {

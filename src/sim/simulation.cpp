@@ -335,9 +335,11 @@ void Simulation::drop_particles(const std::vector<char>& flags) {
   neighbors_.save_history(particles);
   neighbors_.history_follows_removal(flags);
   if (!bonds_.empty()) {
-    const double bonds_before_J = bond_elastic_energy_J();
+    // What the removed bonds stored leaves the books (two passes over the bonds: only when kept).
+    const bool books = keeps_energy_audit();
+    const double bonds_before_J = books ? bond_elastic_energy_J() : 0.0;
     bonds_.remove_with_particles(particles, flags);
-    audit_.exchanged_J -= bonds_before_J - bond_elastic_energy_J();  // what the removed bonds stored
+    if (books) audit_.exchanged_J -= bonds_before_J - bond_elastic_energy_J();
     constexpr std::uint32_t kGone = 0xFFFFFFFFu;  // no bond is left on a removed particle
     std::vector<std::uint32_t> new_index_of_old(particles.size(), kGone);
     std::uint32_t kept = 0;
@@ -401,7 +403,6 @@ void Simulation::report_blow_up(const std::string& what, double at_time_s, std::
 }
 
 void Simulation::compute_forces(double slip_time_s) {
-  // Heat off costs nothing: the pair loop is compiled twice.
   // Heat off, or the energy books not kept, costs nothing: the pair loop is compiled for each.
   const bool books = keeps_energy_audit();
   if (heat_enabled())
@@ -484,8 +485,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const HeatPartitionModel partition = settings_.heat.partition;
   const double fixed_wall_share = settings_.heat.friction_partition;
   constexpr bool audit = Audit;
-  const bool weighted = generate && (partition == HeatPartitionModel::conductivity ||
-                                     partition == HeatPartitionModel::effusivity);
+  const bool weighted = generate && settings_.heat.partition_weighs_bodies();
   if (weighted) fill_partition_weights();
   particle_lossy_.resize(audit ? particles.size() : 0);
   rolling_wall_power_W_.resize(audit ? particles.size() : 0);
@@ -673,11 +673,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           lossy_i.lossy_force_N += f.force_on_i_N + f.elastic_normal_force_N * normal;
           lossy_i.lossy_torque_N_m += cross(normal, f.tangential_force_on_i_N) * distance_m;
           rolling_wall_power_i += dot(f.rolling_torque_on_i_N_m, wall_omega);
-        }
-        // The wall's work on the particle: its force at the surface's velocity, and the
-        // relative-spin rolling torque at the wall's spin (the reaction it feels).
-        if constexpr (audit)
+          // The wall's work on the particle: its force at the surface's velocity, and the
+          // relative-spin rolling torque at the wall's spin (the reaction it feels).
           wall_share[body].power_W += dot(f.force_on_i_N, surface_velocity) + dot(f.rolling_torque_on_i_N_m, wall_omega);
+        }
         wall_share[body].force_N -= f.force_on_i_N;
         wall_share[body].torque_N_m +=
             cross(contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
@@ -712,7 +711,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           Vec3* spring = mesh_history + g;
           const RigidPose& pose = bodies[mesh.body].pose;
           carry_mesh_springs(mesh.mesh, mesh_triangle + g, g_end - g, touches, spring, touched,
-                             [&](std::uint32_t e, const Vec3& cleared_spring) {
+                             [&]([[maybe_unused]] std::uint32_t e, [[maybe_unused]] const Vec3& cleared_spring) {
                                if constexpr (audit) {  // what it held leaves with it (as for pairs)
                                  const auto& corners = mesh.mesh.triangles[mesh_triangle[g + e]];
                                  const Vec3 point = closest_point_on_triangle(
@@ -729,8 +728,6 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
                                                               dt) /
                                        dt;
                                  }
-                               } else {
-                                 (void)e, (void)cleared_spring;
                                }
                              });
           for (const MeshTouch& touch : touches)
@@ -764,11 +761,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         torque_j += share[k].torque_N_m;
         if (own_spin_rolling) own_spin_j += share_own_spin[k];
         if constexpr (Heat) heat_j += share_heat[k];
-        if constexpr (audit) {
-          lossy_j.rolling_torque_N_m += share_lossy[k].rolling_torque_N_m;
-          lossy_j.lossy_force_N += share_lossy[k].lossy_force_N;
-          lossy_j.lossy_torque_N_m += share_lossy[k].lossy_torque_N_m;
-        }
+        if constexpr (audit) lossy_j += share_lossy[k];
       }
       force[j] += force_j;
       torque[j] += torque_j;
@@ -778,13 +771,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       if (own_spin[j] > 0.0) {
         const Vec3 own_spin_torque = RollingOwnSpin::torque(w[j], own_spin[j], inv_inertia[j], dt);
         torque[j] += own_spin_torque;
-        lossy_j.rolling_torque_N_m += own_spin_torque;
+        if constexpr (audit) lossy_j.rolling_torque_N_m += own_spin_torque;
       }
-      if constexpr (audit) {
-        lossy[j].rolling_torque_N_m += lossy_j.rolling_torque_N_m;
-        lossy[j].lossy_force_N += lossy_j.lossy_force_N;
-        lossy[j].lossy_torque_N_m += lossy_j.lossy_torque_N_m;
-      }
+      if constexpr (audit) lossy[j] += lossy_j;
     }
   }
 

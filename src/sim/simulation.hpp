@@ -51,6 +51,11 @@ struct HeatSettings {
   HeatPartitionModel partition = HeatPartitionModel::fixed;
   double friction_partition = 0.5;  // `fixed`: the particle's share at a wall (two particles: half each)
   bool generates_heat() const { return friction_heating || dissipation_heating; }
+  /// The partition weighs each body by its properties (conductivity or effusivity).
+  bool partition_weighs_bodies() const {
+    return generates_heat() &&
+           (partition == HeatPartitionModel::conductivity || partition == HeatPartitionModel::effusivity);
+  }
   // Per-particle peak temperature and time above the threshold (measure/thermal_history.hpp),
   // recorded in the temperature update when on.
   bool track_thermal_history = false;
@@ -285,6 +290,12 @@ class Simulation {
   // spins put into its rolling torques (tau . omega_wall); per pair entry, the partner's.
   struct LossyActions {
     Vec3 rolling_torque_N_m, lossy_force_N, lossy_torque_N_m;
+    LossyActions& operator+=(const LossyActions& o) {
+      rolling_torque_N_m += o.rolling_torque_N_m;
+      lossy_force_N += o.lossy_force_N;
+      lossy_torque_N_m += o.lossy_torque_N_m;
+      return *this;
+    }
   };
   std::vector<LossyActions> particle_lossy_, partner_lossy_;
   std::vector<double> rolling_wall_power_W_;

@@ -203,8 +203,7 @@ void Simulation::apply_bonds(double dt_s) {
   // with dissipation heating they heat the two particles by the partition (the contact
   // pass filled the weights).
   const bool losses_heat = heat && settings_.heat.dissipation_heating;
-  const bool weighted = losses_heat && (settings_.heat.partition == HeatPartitionModel::conductivity ||
-                                        settings_.heat.partition == HeatPartitionModel::effusivity);
+  const bool weighted = losses_heat && settings_.heat.partition_weighs_bodies();
   const double* __restrict weight = partition_weight_.data();
   BlockEnergy* __restrict block_energy = block_energy_.data();
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;

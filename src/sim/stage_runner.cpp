@@ -69,8 +69,6 @@ void check_coupled_heat_step(Simulation& sim) {
 }
 
 bool conducting_wall(const ThermalWall& w) { return w.mode != WallThermalMode::adiabatic; }
-bool fed(const WallBody& w) { return norm2(w.feed_direction) > 0.0; }
-bool spun(const WallBody& w) { return norm2(w.spin_axis) > 0.0; }
 
 /// A stage that ends at a drill depth: the time its wall needs to get there at its
 /// feed speed (infinite when it is not moving).
@@ -133,8 +131,8 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".force_" + axis, "N"});
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".torque_" + axis, "N m"});
     // A drilling engineer's first look: depth, thrust against the feed, torque against the turn.
-    if (fed(wall)) columns.insert(columns.end(), {{wall.name + ".depth", "m"}, {wall.name + ".thrust", "N"}});
-    if (spun(wall)) columns.push_back({wall.name + ".drive_torque", "N m"});
+    if (wall.fed()) columns.insert(columns.end(), {{wall.name + ".depth", "m"}, {wall.name + ".thrust", "N"}});
+    if (wall.spun()) columns.push_back({wall.name + ".drive_torque", "N m"});
   }
   if (sim.bonds_configured()) columns.insert(columns.end(), {{"bonds_intact", "-"}, {"bonds_broken", "-"}});
   if (sim.keeps_energy_audit()) {
@@ -147,7 +145,7 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
                                    {"exchanged_energy", "J"},
                                    {"mechanical_imbalance", "-"}});
     for (const WallBody& wall : sim.walls.bodies)
-      if (fed(wall) || spun(wall)) columns.push_back({wall.name + ".work", "J"});  // on the particles, so far
+      if (wall.fed_or_spun()) columns.push_back({wall.name + ".work", "J"});  // on the particles, so far
   }
   if (!sim.heat_enabled()) return columns;
   columns.insert(columns.end(), {{"temperature_mean", "K"},
@@ -195,8 +193,8 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
   for (const WallBody& wall : sim.walls.bodies) {
     row.insert(row.end(), {wall.force_N.x, wall.force_N.y, wall.force_N.z});
     row.insert(row.end(), {wall.torque_N_m.x, wall.torque_N_m.y, wall.torque_N_m.z});
-    if (fed(wall)) row.insert(row.end(), {wall.depth_m(), -dot(wall.force_N, wall.feed_direction)});
-    if (spun(wall)) row.push_back(-dot(wall.torque_N_m, wall.spin_axis));
+    if (wall.fed()) row.insert(row.end(), {wall.depth_m(), -dot(wall.force_N, wall.feed_direction)});
+    if (wall.spun()) row.push_back(-dot(wall.torque_N_m, wall.spin_axis));
   }
   if (sim.bonds_configured()) {
     const BondCounts bonds = sim.bond_counts();
@@ -207,7 +205,7 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
     row.insert(row.end(), {sim.elastic_energy_J(), audit.wall_work_J, audit.dissipated_J, audit.spring_source_J,
                            audit.exchanged_J, audit.relative(sim.mechanical_imbalance_J())});
     for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b)
-      if (fed(sim.walls.bodies[b]) || spun(sim.walls.bodies[b])) row.push_back(audit.wall_work_by_body_J[b]);
+      if (sim.walls.bodies[b].fed_or_spun()) row.push_back(audit.wall_work_by_body_J[b]);
   }
   if (!sim.heat_enabled()) return row;
   double sum = 0.0, lowest = std::numeric_limits<double>::quiet_NaN(), highest = lowest;

@@ -192,6 +192,13 @@ RunSummary make_summary(const Ending& ending, const ScenarioSpec& spec, const Ru
   summary.heat = {heat.enabled,      heat.time_scale_factor, heat.friction_heating, heat.dissipation_heating,
                   to_string(heat.partition), heat.friction_partition};
   const Simulation& sim = prepared.simulation();
+  for (std::size_t b = 0; heat.enabled && b < sim.wall_thermal.size(); ++b) {
+    const ThermalWall& w = sim.wall_thermal[b];
+    if (w.mode == WallThermalMode::lumped)
+      summary.lumped_walls.push_back({sim.walls.bodies[b].name, w.temperature_K, w.peak_temperature_K,
+                                      w.segment_temperature_K, w.generated_heat_J, w.heat_to_particles_J,
+                                      w.radiated_heat_J, w.held_end_heat_in_J});
+  }
   if (sim.keeps_energy_audit()) {
     const EnergyAudit& audit = sim.energy_audit();
     EnergyAuditSummary a;

@@ -22,6 +22,9 @@ struct MeshWall {
   MeshGrid grid;
   std::uint32_t body = 0;
   MaterialIndex material = 0;
+  // The thermal segment of each triangle, when the wall's body is a segmented lumped
+  // wall (geometry/mesh_axial_segments.hpp); empty: the body is one thermal node.
+  std::vector<std::uint16_t> triangle_segment;
   // A sphere around every vertex, in the reference frame: cheap rejection of
   // particles far from the mesh, and how far a turn can move its surface.
   Vec3 bounding_centre_m;

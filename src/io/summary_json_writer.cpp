@@ -148,6 +148,21 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
                   {"dissipation_heating", summary.heat.dissipation_heating},
                   {"heat_partition", summary.heat.heat_partition},
                   {"friction_partition", number_or_null(summary.heat.friction_partition)}};
+  if (!summary.lumped_walls.empty()) {
+    nlohmann::ordered_json walls = nlohmann::ordered_json::object();
+    for (const LumpedWallSummary& w : summary.lumped_walls) {
+      nlohmann::ordered_json segments = nlohmann::ordered_json::array();
+      for (double t : w.segment_temperature_K) segments.push_back(number_or_null(t));
+      walls[w.name] = {{"temperature_K", number_or_null(w.temperature_K)},
+                       {"peak_temperature_K", number_or_null(w.peak_temperature_K)},
+                       {"segment_temperature_K", segments},
+                       {"generated_heat_J", number_or_null(w.generated_heat_J)},
+                       {"heat_to_particles_J", number_or_null(w.heat_to_particles_J)},
+                       {"radiated_heat_J", number_or_null(w.radiated_heat_J)},
+                       {"held_end_heat_in_J", number_or_null(w.held_end_heat_in_J)}};
+    }
+    json["lumped_walls"] = walls;
+  }
   if (summary.energy_audit) {
     const EnergyAuditSummary& a = *summary.energy_audit;
     nlohmann::ordered_json by_wall = nlohmann::ordered_json::object();

@@ -52,6 +52,15 @@ struct EnergyAuditSummary {
   std::vector<std::pair<std::string, double>> wall_work_by_wall_J;  // moving walls
 };
 
+/// A lumped wall at the end (a drill as a thermal body, docs/drilling-heat.md): its
+/// temperatures and where its heat went, cumulative.
+struct LumpedWallSummary {
+  std::string name;
+  double temperature_K = 0.0, peak_temperature_K = 0.0;
+  std::vector<double> segment_temperature_K;  // 1 at the tip; empty: one node
+  double generated_heat_J = 0.0, heat_to_particles_J = 0.0, radiated_heat_J = 0.0, held_end_heat_in_J = 0.0;
+};
+
 /// Parallel bonds of the run (present when the scenario has a `bonds` section).
 struct BondSummary {
   std::uint64_t formed = 0, intact = 0, broken_in_tension = 0, broken_in_shear = 0;
@@ -95,6 +104,7 @@ struct RunSummary {
   std::string scenario_copy;        // file name of the copy in the output directory
   std::vector<std::string> overrides;  // --set key.path=value, in the order applied
   HeatSummary heat;
+  std::vector<LumpedWallSummary> lumped_walls;
   std::optional<BondSummary> bonds;
   std::optional<ThermalHistoryFinal> thermal_history;
   std::vector<MeasurementFinal> measurements;

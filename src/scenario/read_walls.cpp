@@ -254,9 +254,9 @@ void read_shape(const YamlSection& section, const ScenarioReferences& references
   if (extent) check_inside_domain(section.value(), *extent, references, "the wall");
 }
 
-const std::vector<std::string> kThermalKeys{"mode", "temperature", "conductivity",
-                                           "conductivity_mix", "specific_heat", "mass",
-                                           "areal_density"};
+const std::vector<std::string> kThermalKeys{"mode",          "temperature", "conductivity", "conductivity_mix",
+                                           "specific_heat", "mass",        "areal_density", "segments",
+                                           "rod",           "held_end",    "radiation"};
 
 /// The keys a thermal mode takes, and why the others do not belong.
 std::vector<std::string> thermal_keys_for(WallThermalModeSpec mode) {
@@ -276,7 +276,66 @@ std::vector<std::pair<std::string, std::string>> misplaced_thermal_keys(WallTher
     return hints;
   }
   const std::string why = "only a lumped wall has a heat capacity";
-  return {{"specific_heat", why}, {"mass", why}, {"areal_density", why}};
+  const std::string rod_why = "only a lumped wall has its own heat paths (a fixed wall holds its temperature)";
+  return {{"specific_heat", why}, {"mass", why},          {"areal_density", why}, {"segments", rod_why},
+          {"rod", rod_why},       {"held_end", rod_why}, {"radiation", rod_why}};
+}
+
+/// A lumped wall's own heat paths (docs/drilling-heat.md, "The drill as a thermal body"):
+/// `segments` and `rod` and `held_end` for a mesh or auger (the rod runs along its axis),
+/// `radiation` for any wall with an area.
+void read_lumped_heat_paths(const YamlSection& section, const WallSpec& wall, WallThermalSpec& thermal) {
+  const bool mesh = is_mesh(wall.shape);
+  for (const char* key : {"segments", "rod", "held_end"})
+    if (!mesh && section.has(key))
+      section.get(key)->error(fmt::format("'{}' belongs to a mesh or auger wall, whose rod runs along its axis; "
+                                          "a {} wall is one lumped body",
+                                          key, wall.shape == WallShape::sieve ? "sieve segment" : "primitive"));
+  if (mesh) {
+    if (const auto segments = section.get("segments")) {
+      const auto n = segments->whole_number();
+      if (n && (*n < 1 || *n > 1000)) segments->error(fmt::format("must be 1 to 1000, got {}", *n));
+      if (n && *n >= 1 && *n <= 1000) thermal.segments = static_cast<int>(*n);
+    }
+    if (const auto rod_value = section.get("rod")) {
+      if (const auto rod = rod_value->section()) {
+        rod->allow_only({"conductivity", "cross_section"});
+        thermal.rod_conductivity_W_per_mK = read_checked_quantity(
+            *rod, "conductivity", Dimension::thermal_conductivity, Presence::optional, is_positive, "be greater than 0");
+        thermal.rod_cross_section_m2 = read_checked_quantity(*rod, "cross_section", Dimension::area,
+                                                             Presence::required, is_positive, "be greater than 0")
+                                           .value_or(0.0);
+      }
+    }
+    thermal.held_end_K = read_checked_quantity(section, "held_end", Dimension::temperature, Presence::optional,
+                                               is_positive, "be greater than 0 K");
+    const bool needs_rod = thermal.segments > 1 || thermal.held_end_K;
+    if (needs_rod && !section.has("rod"))
+      section.get(thermal.segments > 1 ? "segments" : "held_end")
+          ->error("heat runs along the rod: give `rod: {cross_section: ..., conductivity: ...}` (the conductivity "
+                  "defaults to the wall material's)");
+    if (!needs_rod && section.has("rod"))
+      section.get("rod")->error("a rod conducts between segments or to a held end: give `segments` (2 or more) or "
+                                "`held_end`");
+  }
+  if (const auto radiation_value = section.get("radiation")) {
+    if (wall.shape == WallShape::plane) {
+      radiation_value->error("a plane is unbounded and has no area to radiate from");
+      return;
+    }
+    if (const auto radiation = radiation_value->section()) {
+      radiation->allow_only({"emissivity", "surroundings"});
+      const auto emissivity = read_checked_quantity(*radiation, "emissivity", Dimension::dimensionless,
+                                                    Presence::required, is_positive, "be greater than 0");
+      if (emissivity && *emissivity > 1.0)
+        radiation->get("emissivity")->error(fmt::format("must be at most 1, got {}", *emissivity));
+      else if (emissivity)
+        thermal.emissivity = *emissivity;
+      thermal.surroundings_K = read_checked_quantity(*radiation, "surroundings", Dimension::temperature,
+                                                     Presence::required, is_non_negative, "be 0 K or more")
+                                   .value_or(0.0);
+    }
+  }
 }
 
 /// A fixed wall's temperature: one value, or {time: [...], value: [...]} (linear
@@ -362,7 +421,10 @@ void read_wall_thermal(const YamlValue& value, const ScenarioReferences& referen
   if (const auto mix = section->get("conductivity_mix")) {
     thermal.harmonic_mean = mix->choice({"wall", "harmonic_mean"}).value_or("wall") == "harmonic_mean";
   }
-  if (thermal.mode == WallThermalModeSpec::lumped) read_lumped_capacity(*section, wall, thermal);
+  if (thermal.mode == WallThermalModeSpec::lumped) {
+    read_lumped_capacity(*section, wall, thermal);
+    read_lumped_heat_paths(*section, wall, thermal);
+  }
 }
 
 std::optional<WallSpec> read_wall(const YamlValue& item, const ScenarioReferences& references) {

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "geometry/mesh_axial_segments.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/particle_csv_reader.hpp"
 #include "scenario/conduction_pairs.hpp"
@@ -20,6 +21,7 @@
 #include "scenario/plan_limits.hpp"
 #include "sim/overlap_scan.hpp"
 #include "sim/time_step.hpp"
+#include "thermal/lumped_wall_step.hpp"
 #include "thermal/thermal_wall.hpp"
 #include "thermal/time_table.hpp"
 
@@ -286,6 +288,64 @@ ThermalWall thermal_wall(const ScenarioSpec& spec, const WallSpec& w, double are
   }
   out.conductivity_W_per_mK = wall_conductivity(spec, w, out.temperature_K);
   out.mix = t.harmonic_mean ? WallConductivityMix::harmonic_mean : WallConductivityMix::wall;
+  out.rod.area_m2 = area_m2;
+  out.rod.emissivity = t.emissivity;
+  out.rod.surroundings_K = t.surroundings_K;
+  return out;
+}
+
+/// A lumped mesh wall as a rod along its axis (docs/drilling-heat.md): its triangles
+/// cut into `segments` slices, each slice's m C by its share of the area, neighbours
+/// linked by k A / dz and the last (far from the tip) to a held end by k A / (dz / 2).
+void make_rod(const ScenarioSpec& spec, const WallSpec& w, MeshWall& mesh, ThermalWall& out) {
+  const WallThermalSpec& t = w.thermal;
+  if (out.mode != WallThermalMode::lumped || (t.segments <= 1 && !t.held_end_K)) return;
+  MeshAxialSegments cut;
+  try {
+    cut = split_mesh_along_axis(mesh.mesh, w.normal, t.segments);
+  } catch (const InputError& problem) {
+    fail(t.where, fmt::format("wall '{}': {}", w.name, problem.what()));
+  }
+  std::optional<double> k = t.rod_conductivity_W_per_mK;
+  if (!k) {
+    for (const MaterialSpec& m : spec.materials)
+      if (m.name == w.material && m.conductivity_W_per_mK) k = curve_of(*m.conductivity_W_per_mK).at(out.temperature_K);
+  }
+  if (!k || !(*k > 0.0))
+    fail(t.where, fmt::format("wall '{}': its rod conducts along its axis: give `rod: {{conductivity: ...}}` or a "
+                              "conductivity for its material",
+                              w.name));
+  const double dz_m = cut.length_m / static_cast<double>(t.segments);
+  const double conductance = *k * t.rod_cross_section_m2 / dz_m;
+  if (t.held_end_K) {
+    out.rod.held_end_K = t.held_end_K;
+    out.rod.held_end_conductance_W_per_K = 2.0 * conductance;
+  }
+  if (t.segments <= 1) return;
+  out.rod.link_conductance_W_per_K = conductance;
+  const double total_area = mesh.mesh.area();
+  for (double a : cut.area_m2) {
+    out.rod.segment_heat_capacity_J_per_K.push_back(out.heat_capacity_J_per_K * a / total_area);
+    out.rod.segment_area_m2.push_back(a);
+  }
+  out.segment_temperature_K.assign(cut.area_m2.size(), out.temperature_K);
+  mesh.triangle_segment = std::move(cut.triangle_segment);
+}
+
+/// The rod's part of a lumped wall's line in the plan (nothing for a plain lumped wall).
+std::string describe_heat_paths(const ThermalWall& t) {
+  std::string out;
+  const WallRod& rod = t.rod;
+  if (rod.segmented())
+    out += fmt::format("; {} axial segments (1 at the tip), m C {:.4g} to {:.4g} J/K, linked by {:.4g} W/K",
+                       rod.segment_heat_capacity_J_per_K.size(),
+                       *std::min_element(rod.segment_heat_capacity_J_per_K.begin(), rod.segment_heat_capacity_J_per_K.end()),
+                       *std::max_element(rod.segment_heat_capacity_J_per_K.begin(), rod.segment_heat_capacity_J_per_K.end()),
+                       rod.link_conductance_W_per_K);
+  if (rod.held_end_K)
+    out += fmt::format("; far end held at {:.5g} K through {:.4g} W/K", *rod.held_end_K, rod.held_end_conductance_W_per_K);
+  if (rod.emissivity > 0.0)
+    out += fmt::format("; radiates with emissivity {:.3g} to {:.5g} K", rod.emissivity, rod.surroundings_K);
   return out;
 }
 
@@ -317,8 +377,8 @@ std::string describe_thermal_wall(const WallSpec& w, const ThermalWall& t, int s
           largest_capacity_J_per_K > t.heat_capacity_J_per_K
               ? fmt::format("{:.4g} J/K ({:.4g} J/K with the bottom)", t.heat_capacity_J_per_K, largest_capacity_J_per_K)
               : fmt::format("{:.4g} J/K", t.heat_capacity_J_per_K);
-      return fmt::format("{}: lumped, heat capacity m C = {}, initially {:.5g} K; conductivity {}{}", who, capacity,
-                         t.temperature_K, k, mix);
+      return fmt::format("{}: lumped, heat capacity m C = {}, initially {:.5g} K; conductivity {}{}{}", who, capacity,
+                         t.temperature_K, k, mix, describe_heat_paths(t));
     }
   }
   return who;
@@ -748,6 +808,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
 
   WallSet walls;
   std::vector<ThermalWall> wall_thermal;
+  std::vector<const WallSpec*> spec_of_body;  // index for index with wall_thermal
   std::vector<ConductingWall> conducting_walls;
   const auto conducting = [&](const WallSpec& w, MaterialIndex material, const ThermalWall& t) {
     if (t.mode != WallThermalMode::adiabatic)
@@ -772,6 +833,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
         const double area = 2.0 * std::numbers::pi * w.radius_m * w.length_m +
                             (bottom && w.cap_bottom ? disk_area(w.radius_m) : 0.0);
         wall_thermal.push_back(thermal_wall(spec, w, area));
+        spec_of_body.push_back(&w);
         if (k == 1) first = wall_thermal.back();
       }
       if (spec.heat.enabled)
@@ -813,6 +875,8 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
       }
     }
     wall_thermal.push_back(thermal_wall(spec, w, area));
+    spec_of_body.push_back(&w);
+    if (spec.heat.enabled && (w.shape == WallShape::mesh || w.shape == WallShape::auger)) make_rod(spec, w, walls.meshes.back(), wall_thermal.back());
     if (spec.heat.enabled) lines.push_back(describe_thermal_wall(w, wall_thermal.back(), 1, 0.0));
     conducting(w, material, wall_thermal.back());
   }
@@ -837,6 +901,19 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     fail(SourceLocation{spec.file, 0, 0, "rayleigh_fraction"},
          fmt::format("rayleigh_fraction {} is above the stable limit {}", spec.rayleigh_fraction,
                      spec.max_rayleigh_fraction));
+  // A lumped rod stepped explicitly (thermal/lumped_wall_step.hpp) must be stable at dt.
+  for (std::size_t b = 0; spec.heat.enabled && b < wall_thermal.size(); ++b) {
+    const ThermalWall& t = wall_thermal[b];
+    if (t.mode != WallThermalMode::lumped || !t.rod.exchanges()) continue;
+    const double limit_s =
+        lumped_wall_stability_limit_s(t.node_heat_capacities_J_per_K(), t.rod, spec.heat.time_scale_factor);
+    if (dt >= limit_s)
+      fail(spec_of_body[b]->thermal.where,
+           fmt::format("wall '{}': its rod's segments exchange heat too fast for the time step ({:.4g} s against a "
+                       "stable {:.4g} s, m C / G of its lightest segment with the time-scale factor): use fewer "
+                       "segments, a thinner rod or a larger mass",
+                       walls.bodies[b].name, dt, limit_s));
+  }
   // Gravity that moves a free grain 1 % of the smallest radius in one step is no
   // gravity a contact can hold (1e30 m/s^2 was reported as a time step too large for the
   // contacts); the shipped scenarios stay below 3e-5 of it.
@@ -914,6 +991,17 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
             ? fmt::format("until '{}' {} {} {:.6g} K, at most {:.4g} s", st.until_measurement, st.until_quantity,
                           st.until_rising ? "rises to" : "falls to", st.until_value_K, stage.max_duration_s)
             : "";
+    if (stage.freezes_mechanics()) {
+      // The frozen network (thermal/thermal_network.hpp) holds one node per lumped wall and
+      // no radiation: a drill's own heat paths are stepped with the contacts only.
+      const auto& thermal = impl.simulation->wall_thermal;
+      for (std::size_t b = 0; b < thermal.size(); ++b)
+        if (thermal[b].mode == WallThermalMode::lumped && thermal[b].rod.exchanges())
+          fail(st.where, fmt::format("stage '{}' freezes the bed, but wall '{}' has segments, radiation or a held "
+                                     "end, which a static-bed stage does not step yet: use `heat_stepping: coupled` "
+                                     "here, or a plain lumped wall",
+                                     stage.name, impl.simulation->walls.bodies[b].name));
+    }
     if (stage.freezes_mechanics())
       lines.push_back(fmt::format("stage '{}': {}, static bed (mechanics frozen), heat by {}, thermal step {}",
                                   stage.name,

@@ -120,6 +120,15 @@ struct WallThermalSpec {
   double specific_heat_J_per_kgK = 0.0;         // lumped
   double mass_kg = 0.0;                         // lumped: mass, or
   double areal_density_kg_per_m2 = 0.0;         //   areal density x the wall's area (per segment)
+  // lumped mesh and auger walls: a rod of `segments` axial pieces (1 at the tip), the
+  // rod's axial conduction, and a held far end (docs/drilling-heat.md).
+  int segments = 1;
+  std::optional<double> rod_conductivity_W_per_mK;  // none: the wall material's conductivity
+  double rod_cross_section_m2 = 0.0;                // 0: no rod given
+  std::optional<double> held_end_K;
+  // lumped: radiation to the surroundings (emissivity 0: none).
+  double emissivity = 0.0;
+  double surroundings_K = 0.0;
   SourceLocation where;
 };
 

@@ -110,9 +110,27 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
   wall_power_W_.assign(n_bodies, 0.0);
   audit_.wall_work_by_body_J.assign(n_bodies, 0.0);
   refresh_thermal_material_cache();
-  for (ThermalWall& w : wall_thermal) {
+  wall_node_begin_.assign(1, 0);
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    ThermalWall& w = wall_thermal[b];
     if (w.mode == WallThermalMode::fixed) w.temperature_K = w.prescribed_temperature_K.at(0.0);
-    if (w.mode == WallThermalMode::lumped) ledger_.reference_energy_J += w.heat_capacity_J_per_K * w.temperature_K;
+    if (w.mode == WallThermalMode::lumped) {
+      if (w.rod.segmented() && w.segment_temperature_K.size() != w.rod.segment_heat_capacity_J_per_K.size())
+        w.segment_temperature_K.assign(w.rod.segment_heat_capacity_J_per_K.size(), w.temperature_K);
+      w.peak_temperature_K = w.temperature_K;
+      w.refresh_summary_temperature();
+      ledger_.reference_energy_J += w.stored_heat_J();
+    } else if (w.rod.exchanges() || !w.segment_temperature_K.empty()) {
+      throw InputError(fmt::format("wall {}: only a lumped wall has segments, radiation or a held end", b));
+    }
+    wall_node_begin_.push_back(wall_node_begin_.back() + static_cast<std::uint32_t>(w.node_count()));
+  }
+  node_heat_in_W_.assign(wall_node_begin_.back(), 0.0);
+  for (const MeshWall& mesh : walls.meshes) {
+    const std::size_t nodes = wall_thermal[mesh.body].node_count();
+    if (nodes > 1 && mesh.triangle_segment.size() != mesh.mesh.triangle_count())
+      throw InputError(fmt::format("wall {} has {} thermal segments but its mesh gives its triangles none", mesh.body,
+                                   nodes));
   }
 }
 
@@ -468,6 +486,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
   const std::size_t blocks = (particles.size() + block_size - 1) / block_size;
   block_wall_share_.resize(blocks * n_bodies);
+  const std::uint32_t* node_begin = wall_node_begin_.data();
+  const std::size_t n_nodes = Heat ? node_heat_in_W_.size() : 0;
+  block_node_heat_.resize(blocks * n_nodes);
+  NodeHeat* __restrict block_node = block_node_heat_.data();
   block_energy_.resize(blocks);
   WallShare* __restrict block_wall = block_wall_share_.data();
   BlockEnergy* __restrict block_energy = block_energy_.data();
@@ -504,9 +526,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     }
   };
   // Taken once per pass into a member buffer: no allocation per step.
-  wall_contact_heat_.resize(Heat ? n_bodies : 0);
-  for (std::size_t b = 0; b < wall_contact_heat_.size(); ++b)
-    wall_contact_heat_[b] = WallContactHeat::of(wall_thermal[b]);
+  wall_contact_heat_.resize(n_nodes);
+  for (std::size_t b = 0; Heat && b < n_bodies; ++b)
+    for (std::uint32_t node = node_begin[b]; node < node_begin[b + 1]; ++node)
+      wall_contact_heat_[node] = WallContactHeat::of(wall_thermal[b], node - node_begin[b]);
   const WallContactHeat* wall_heat = wall_contact_heat_.data();
 
   // Pass 1, each thread over its owners: every contact's action on the owner is summed
@@ -521,6 +544,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     // The thread's blocks (its range starts on a block boundary; an empty range has none).
     for (std::size_t k = begin / block_size; begin < end && k < (end + block_size - 1) / block_size; ++k) {
       std::fill(block_wall + k * n_bodies, block_wall + (k + 1) * n_bodies, WallShare{});
+      std::fill(block_node + k * n_nodes, block_node + (k + 1) * n_nodes, NodeHeat{});
       block_energy[k] = BlockEnergy{};
     }
     MeshTouchFinder& finder = mesh_scratch_[t].finder;
@@ -536,6 +560,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       LossyActions lossy_i;
       double rolling_wall_power_i = 0.0;
       WallShare* __restrict wall_share = block_wall + (i / block_size) * n_bodies;
+      NodeHeat* __restrict node_share = block_node + (i / block_size) * n_nodes;
       double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
       if constexpr (Heat) {
         temperature_i = temperature[i];
@@ -624,8 +649,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       }
 
       // One particle-wall contact, analytic or mesh: R* = R_i, m* = m_i (DESIGN.md section 2).
+      // node: the wall's thermal node (the body's first, or a segment of it).
       const auto touch_wall = [&](double distance_m, const Vec3& normal, const Vec3& contact_point_m,
-                                  MaterialIndex wall_material, std::uint32_t body, Vec3& wall_spring) {
+                                  MaterialIndex wall_material, std::uint32_t body, std::uint32_t node,
+                                  Vec3& wall_spring) {
         ++wall_contacts;
         const WallMotion& motion = bodies[body].motion;
         const Vec3 wall_omega = motion.active_at(now) ? motion.angular_velocity_rad_per_s : Vec3{};
@@ -644,20 +671,20 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         c.slip_time_s = slip_time_s;
         const ContactForces f = HertzMindlinLaw::evaluate<Audit>(table(mat_i, wall_material), c, wall_spring);
         if constexpr (Heat) {
-          const WallContactHeat& wh = wall_heat[body];
+          const WallContactHeat& wh = wall_heat[node];
           if (wh.conducts) {
             const double q = contact_conductance_W_per_K(conduction(mat_i, wall_material),
                                                          wh.contact_conductivity(conductivity_i), f.contact_radius_m) *
                              (wh.temperature_K - temperature_i);
             heat_i += q;
-            wall_share[body].conduction_W -= q;
+            node_share[node].conduction_W -= q;
           }
           if (generate) {
             const double generated = all_losses ? f.dissipated_power_W : f.sliding_power_W;
             const double share_i = wall_share_of_particle(wh, weighted ? weight[i] : 1.0, wall_material);
             generated_i += generated;
             heat_i += share_i * generated;
-            wall_share[body].generated_heat_W += (1.0 - share_i) * generated;
+            node_share[node].generated_heat_W += (1.0 - share_i) * generated;
           }
         }
         force_i += f.force_on_i_N;
@@ -698,7 +725,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           }
           continue;
         }
-        touch_wall(prox.distance_m, prox.normal, prox.contact_point_m, wall.material, wall.body, wall_history[k]);
+        touch_wall(prox.distance_m, prox.normal, prox.contact_point_m, wall.material, wall.body, node_begin[wall.body],
+                   wall_history[k]);
       }
 
       // Mesh walls: the entries of one mesh form a run; its touches are counted once
@@ -730,8 +758,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
                                  }
                                }
                              });
+          const std::uint16_t* segment = mesh.triangle_segment.empty() ? nullptr : mesh.triangle_segment.data();
           for (const MeshTouch& touch : touches)
             touch_wall(touch.distance_m, touch.normal, touch.contact_point_m, mesh.material, mesh.body,
+                       node_begin[mesh.body] + (segment ? segment[mesh_triangle[g + touch.entry]] : 0u),
                        spring[touch.entry]);
         });
       }
@@ -784,16 +814,25 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       const WallShare& part = block_wall[k * n_bodies + b];
       sum.force_N += part.force_N;
       sum.torque_N_m += part.torque_N_m;
-      sum.conduction_W += part.conduction_W;
-      sum.generated_heat_W += part.generated_heat_W;
       sum.power_W += part.power_W;
     }
     walls.bodies[b].force_N = sum.force_N;
     walls.bodies[b].torque_N_m = sum.torque_N_m;
     wall_power_W_[b] = sum.power_W;
     if constexpr (Heat) {
-      wall_thermal[b].heat_flow_to_particles_W = -sum.conduction_W;
-      wall_generated_heat_W_[b] = sum.generated_heat_W;
+      double conduction_W = 0.0, generated_W = 0.0;
+      for (std::uint32_t node = node_begin[b]; node < node_begin[b + 1]; ++node) {
+        NodeHeat node_sum;
+        for (std::size_t k = 0; k < blocks; ++k) {
+          node_sum.conduction_W += block_node[k * n_nodes + node].conduction_W;
+          node_sum.generated_heat_W += block_node[k * n_nodes + node].generated_heat_W;
+        }
+        node_heat_in_W_[node] = node_sum.conduction_W + node_sum.generated_heat_W;
+        conduction_W += node_sum.conduction_W;
+        generated_W += node_sum.generated_heat_W;
+      }
+      wall_thermal[b].heat_flow_to_particles_W = -conduction_W;
+      wall_generated_heat_W_[b] = generated_W;
     }
   }
   stats_.particle_contacts = particle_contacts;

@@ -277,10 +277,13 @@ class Simulation {
   std::vector<std::uint8_t> partner_touching_;
   struct WallShare {
     Vec3 force_N, torque_N_m;
-    double conduction_W = 0.0, generated_heat_W = 0.0;
     double power_W = 0.0;  // the wall's work on the particles per unit time
   };
   std::vector<WallShare> block_wall_share_;  // blocks x wall bodies
+  struct NodeHeat {  // per thermal node of the walls (a body, or a segment of one)
+    double conduction_W = 0.0, generated_heat_W = 0.0;
+  };
+  std::vector<NodeHeat> block_node_heat_;  // blocks x wall nodes
   struct BlockEnergy {  // per block of owners, summed in order
     double generated_heat_W = 0.0, dissipated_W = 0.0, elastic_J = 0.0, spring_source_W = 0.0;
   };
@@ -311,6 +314,10 @@ class Simulation {
   std::vector<MeshScratch> mesh_scratch_;
   // The last pass's sums (contacts, then the bonds' and the rolling torques' additions).
   std::vector<double> wall_generated_heat_W_;  // per wall body: generated heat the wall takes
+  // The walls' thermal nodes: body b's are [wall_node_begin_[b], wall_node_begin_[b + 1])
+  // (one, or a segmented wall's segments); per node, the heat its contacts put in.
+  std::vector<std::uint32_t> wall_node_begin_;
+  std::vector<double> node_heat_in_W_;
   std::vector<double> wall_power_W_;           // per wall body: its power into the particles
   double generated_heat_W_ = 0.0;              // heat generated at all contacts and bonds
   double dissipated_power_W_ = 0.0;            // every loss, heat on or off
@@ -318,7 +325,7 @@ class Simulation {
   double spring_source_W_ = 0.0;            // the tangential springs' own source (EnergyAudit)
   std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0
   std::vector<char> conductivity_varies_;      // per material: k is a table
-  std::vector<WallContactHeat> wall_contact_heat_;  // per wall body, taken at each contact pass
+  std::vector<WallContactHeat> wall_contact_heat_;  // per wall node, taken at each contact pass
 
   BondStore bonds_;
   std::vector<BondParameters> bond_kinds_;

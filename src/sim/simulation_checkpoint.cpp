@@ -194,6 +194,11 @@ std::uint32_t section_version(const Checkpoint& checkpoint, std::string_view tag
 /// the next step.
 constexpr std::uint32_t kNeighborsVersion = 2;
 
+/// WTHM version 2 adds each wall's radiated and held-end heat, its peak temperature and
+/// segment temperatures, and every wall node's contact heat (issue 21); a version 1
+/// section restores walls of one node each.
+constexpr std::uint32_t kWallHeatVersion = 2;
+
 /// skin_m, bodies: a version 1 list was built with every half at skin/2.
 void load_neighbors(ByteReader& r, std::uint32_t version, double skin_m, std::size_t bodies, NeighborList& nl,
                     std::size_t particles,
@@ -340,8 +345,13 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
       w.put(t.heat_flow_to_particles_W);
       w.put(t.heat_to_particles_J);
       w.put(t.generated_heat_J);
+      w.put(t.radiated_heat_J);
+      w.put(t.held_end_heat_in_J);
+      w.put(t.peak_temperature_K);
+      w.put_vector(t.segment_temperature_K);
     }
-    checkpoint.add(kWallHeat, 1, std::move(w));
+    w.put_vector(node_heat_in_W_);
+    checkpoint.add(kWallHeat, kWallHeatVersion, std::move(w));
   }
   {
     ByteWriter w;
@@ -448,7 +458,8 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     if (r.get<std::uint64_t>() != walls.meshes.size()) r.fail("has another number of mesh walls than the scenario");
   }
   {
-    ByteReader r = checkpoint.reader(kWallHeat);
+    ByteReader r = checkpoint.reader(kWallHeat, kWallHeatVersion);
+    const std::uint32_t version = section_version(checkpoint, kWallHeat);
     if (r.get<std::uint64_t>() != wall_thermal.size()) r.fail("has another number of thermal walls than the scenario");
     for (ThermalWall& t : wall_thermal) {
       if (r.get<std::uint8_t>() != static_cast<std::uint8_t>(t.mode)) r.fail("has a wall of another thermal mode");
@@ -456,6 +467,25 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
       r.get(t.heat_flow_to_particles_W);
       r.get(t.heat_to_particles_J);
       r.get(t.generated_heat_J);
+      if (version >= 2) {
+        r.get(t.radiated_heat_J);
+        r.get(t.held_end_heat_in_J);
+        r.get(t.peak_temperature_K);
+        const std::size_t segments = t.segment_temperature_K.size();
+        r.get_vector(t.segment_temperature_K);
+        if (t.segment_temperature_K.size() != segments) r.fail("has a wall of another number of thermal segments");
+      } else {
+        if (t.rod.segmented()) r.fail("is from before segmented walls (WTHM version 1): start the run again");
+        t.peak_temperature_K = t.temperature_K;
+      }
+    }
+    if (version >= 2) {
+      r.get_vector(node_heat_in_W_);
+      if (node_heat_in_W_.size() != wall_node_begin_.back()) r.fail("has another number of wall thermal nodes");
+    } else {
+      // One node per wall: what its contacts put in, from the wall's sums.
+      for (std::size_t b = 0; b < wall_thermal.size(); ++b)
+        node_heat_in_W_[wall_node_begin_[b]] = -wall_thermal[b].heat_flow_to_particles_W + wall_generated_heat_W_[b];
     }
   }
   {

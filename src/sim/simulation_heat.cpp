@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "measure/thermal_history.hpp"
 #include "sim/simulation.hpp"
+#include "thermal/lumped_wall_step.hpp"
 #include "thermal/static_bed_solver.hpp"
 
 namespace regodem {
@@ -22,8 +23,7 @@ double Simulation::particle_thermal_energy_J(std::size_t i) const {
 double Simulation::thermal_energy_J() const {
   double sum = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i) sum += particle_thermal_energy_J(i);
-  for (const ThermalWall& w : wall_thermal)
-    if (w.mode == WallThermalMode::lumped) sum += w.heat_capacity_J_per_K * w.temperature_K;
+  for (const ThermalWall& w : wall_thermal) sum += w.stored_heat_J();
   return sum;
 }
 
@@ -106,7 +106,19 @@ void Simulation::update_temperatures(double dt_s) {
     w.generated_heat_J += generated_W * dt_s;
     switch (w.mode) {
       case WallThermalMode::adiabatic: break;
-      case WallThermalMode::lumped: w.temperature_K += into_wall_W * dt_s / w.heat_capacity_J_per_K; break;
+      case WallThermalMode::lumped: {
+        // Its nodes take their contacts' heat, and the rod's own exchanges (lumped_wall_step.hpp).
+        const std::span<const double> contact_heat_W(node_heat_in_W_.data() + wall_node_begin_[b],
+                                                     wall_node_begin_[b + 1] - wall_node_begin_[b]);
+        const WallBoundaryHeat out =
+            step_lumped_wall(w.node_temperatures_K(), w.node_heat_capacities_J_per_K(), w.node_areas_m2(),
+                             contact_heat_W, w.rod, dt_s, settings_.heat.time_scale_factor);
+        w.radiated_heat_J += out.radiated_J;
+        w.held_end_heat_in_J += out.held_end_in_J;
+        ledger_.boundary_heat_in_J += out.held_end_in_J - out.radiated_J;
+        w.refresh_summary_temperature();
+        break;
+      }
       case WallThermalMode::fixed:
         // Heat a fixed wall takes leaves the system (the wall is a reservoir).
         ledger_.boundary_heat_in_J -= into_wall_W * dt_s;

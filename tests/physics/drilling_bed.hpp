@@ -3,6 +3,7 @@
 // fixed-temperature floor, a mesh paddle that feeds and turns (a fixed-temperature
 // "drill"), heat, bonds formed later by the test that are weak enough to break.
 #include "core/rng.hpp"
+#include "geometry/mesh_axial_segments.hpp"
 #include "physics_fixtures.hpp"
 
 namespace regodem::testing {
@@ -17,6 +18,9 @@ struct DrillingBedOptions {
   double rolling_friction = 0.1;
   double rayleigh_fraction = 0.1;  // the step
   bool energy_audit = true;
+  // The paddle a lumped rod of 4 axial segments (issue 21: the drill as a thermal body):
+  // steel's k along its section, radiating to 100 K, its top held at 150 K.
+  bool rod_drill = false;
 };
 
 inline Simulation make_drilling_bed(const DrillingBedOptions& options = {}) {
@@ -53,6 +57,24 @@ inline Simulation make_drilling_bed(const DrillingBedOptions& options = {}) {
   floor.prescribed_temperature_K = TimeTable({0.0, 0.05}, {400.0, 500.0});
   paddle_heat.mode = WallThermalMode::fixed;
   paddle_heat.prescribed_temperature_K = TimeTable(150.0);
+  if (options.rod_drill) {
+    MeshWall& mesh = walls.meshes.back();
+    const MeshAxialSegments cut = split_mesh_along_axis(mesh.mesh, {0, 0, 1}, 4);
+    mesh.triangle_segment = cut.triangle_segment;
+    paddle_heat = ThermalWall{};
+    paddle_heat.mode = WallThermalMode::lumped;
+    paddle_heat.temperature_K = 150.0;
+    paddle_heat.heat_capacity_J_per_K = 0.087;  // 5 x 1.2 x 4 mm of steel, c = 460 J/(kg K)
+    for (double a : cut.area_m2) {
+      paddle_heat.rod.segment_heat_capacity_J_per_K.push_back(0.087 * a / mesh.mesh.area());
+      paddle_heat.rod.segment_area_m2.push_back(a);
+    }
+    paddle_heat.rod.link_conductance_W_per_K = 45.0 * 5e-3 * 1.2e-3 / (cut.length_m / 4);
+    paddle_heat.rod.held_end_K = 150.0;
+    paddle_heat.rod.held_end_conductance_W_per_K = 2.0 * paddle_heat.rod.link_conductance_W_per_K;
+    paddle_heat.rod.emissivity = 0.8;
+    paddle_heat.rod.surroundings_K = 100.0;
+  }
   MaterialTable materials = one_material(m);
   PairProperties pair = materials.pair(0, 0);
   pair.rolling_model = options.rolling_model;

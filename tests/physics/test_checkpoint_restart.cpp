@@ -56,6 +56,9 @@ void expect_identical(const Simulation& a, const Simulation& b) {
   for (std::size_t w = 0; w < a.wall_thermal.size(); ++w) {
     EXPECT_EQ(a.wall_thermal[w].temperature_K, b.wall_thermal[w].temperature_K) << w;
     EXPECT_EQ(a.wall_thermal[w].heat_to_particles_J, b.wall_thermal[w].heat_to_particles_J) << w;
+    EXPECT_EQ(a.wall_thermal[w].segment_temperature_K, b.wall_thermal[w].segment_temperature_K) << w;
+    EXPECT_EQ(a.wall_thermal[w].radiated_heat_J, b.wall_thermal[w].radiated_heat_J) << w;
+    EXPECT_EQ(a.wall_thermal[w].held_end_heat_in_J, b.wall_thermal[w].held_end_heat_in_J) << w;
     EXPECT_EQ(a.walls.bodies[w].pose.translation_m, b.walls.bodies[w].pose.translation_m) << w;
     EXPECT_EQ(a.walls.bodies[w].pose.rotation, b.walls.bodies[w].pose.rotation) << w;
     EXPECT_EQ(a.walls.bodies[w].force_N, b.walls.bodies[w].force_N) << w;
@@ -123,17 +126,21 @@ TEST(ThreadCount, OneTwoAndThreeThreadsRunBitForBitAlike) {
   expect_identical(one, three);
 }
 
-// Every loss as heat, shared by effusivity, with damped bonds and EDEM's own-spin rolling:
-// the passes that only dissipation heating takes, on 1, 2 and 3 threads.
+// Every loss as heat, shared by effusivity, with damped bonds and EDEM's own-spin rolling,
+// and the paddle a lumped rod of segments: the passes that only dissipation heating and a
+// segmented wall take, on 1, 2 and 3 threads.
+Simulation make_dissipating_bed(int threads) {
+  return make_drilling_bed({.threads = threads,
+                            .dissipation_heating = true,
+                            .partition = HeatPartitionModel::effusivity,
+                            .bond_damping_ratio = 0.2,
+                            .rolling_model = RollingModel::own_spin,
+                            .rod_drill = true});
+}
+
 TEST(ThreadCount, DissipationHeatingRunsBitForBitAlike) {
   const Phase phase{300, 400};
-  const auto bed = [](int threads) {
-    return make_drilling_bed({.threads = threads,
-                              .dissipation_heating = true,
-                              .partition = HeatPartitionModel::effusivity,
-                              .bond_damping_ratio = 0.2,
-                              .rolling_model = RollingModel::own_spin});
-  };
+  const auto bed = make_dissipating_bed;
   Simulation one = bed(1), two = bed(2), three = bed(3);
   for (Simulation* sim : {&one, &two, &three}) {
     run_first_part(*sim, phase);
@@ -146,25 +153,38 @@ TEST(ThreadCount, DissipationHeatingRunsBitForBitAlike) {
   expect_identical(one, three);
 }
 
-TEST(ThreadCount, ACheckpointFromTwoThreadsGoesOnBitForBitOnOneAndThree) {
+/// A bed run whole on 2 threads against the same bed checkpointed half-way and resumed
+/// on each of `resume_threads`; returns the whole run.
+Simulation expect_resumed_alike(Simulation (*bed)(int), std::initializer_list<int> resume_threads) {
   const Phase phase{300, 400};
-  Simulation whole = make_bed(2);
+  Simulation whole = bed(2);
   run_first_part(whole, phase);
   whole.advance(phase.bonded_steps);
 
-  Simulation first = make_bed(2);
+  Simulation first = bed(2);
   run_first_part(first, phase);
   first.advance(phase.bonded_steps / 2);
   Checkpoint saved;
   first.save_state(saved);
   const Checkpoint loaded = decode_checkpoint(encode_checkpoint(saved), "in memory");
-  for (const int threads : {1, 3}) {
-    Simulation resumed = make_bed(threads);
+  for (const int threads : resume_threads) {
+    Simulation resumed = bed(threads);
     resumed.restore_state(loaded);
     resumed.advance(phase.bonded_steps - phase.bonded_steps / 2);
     EXPECT_EQ(resumed.force_pass_threads(), threads);
     expect_identical(whole, resumed);
   }
+  return whole;
+}
+
+TEST(ThreadCount, ACheckpointFromTwoThreadsGoesOnBitForBitOnOneAndThree) { expect_resumed_alike(make_bed, {1, 3}); }
+
+// The segmented paddle's temperatures, and the heat its rod radiated and took through
+// its held end, go on from a checkpoint as if never stopped.
+TEST(CheckpointRestart, ASegmentedDrillGoesOnBitForBit) {
+  const Simulation whole = expect_resumed_alike(make_dissipating_bed, {1});
+  ASSERT_EQ(whole.wall_thermal[2].segment_temperature_K.size(), 4u);
+  EXPECT_NE(whole.wall_thermal[2].segment_temperature_K[0], 150.0);
 }
 
 TEST(CheckpointRestart, SavingDoesNotDisturbTheRun) {

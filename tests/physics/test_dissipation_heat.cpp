@@ -253,5 +253,38 @@ TEST(EnergyAudit, TheDrillingBedTurnsEveryLossIntoHeatAndClosesItsBooks) {
   }
 }
 
+// The drill as a thermal body (issue 21): the paddle a lumped rod of 4 segments that
+// takes its share of every loss, conducts along itself, radiates to 100 K and is held at
+// 150 K at its top. Stated before the run: the thermal books close to 1e-9 with what the
+// rod radiated and took through its end; the paddle's own heat, sum C_s (T_s - 150 K), is
+// what its contacts gave it (generated less conducted out) plus its end's less its
+// radiation, to 1e-9 of those flows; it heated above its held end, so its end took heat
+// out, and it radiated; the segment that cuts (the tip, 0) is warmer than the held one.
+TEST(DrillThermalBody, ASegmentedPaddleKeepsItsBooksAndHeatsAtItsTip) {
+  Simulation sim = make_drilling_bed({.dissipation_heating = true,
+                                      .partition = HeatPartitionModel::conductivity,
+                                      .bond_damping_ratio = 0.1,
+                                      .rod_drill = true});
+  sim.advance(300);
+  EXPECT_GT(sim.form_bonds(0.05), 20u);
+  sim.advance(1200);
+  EXPECT_LT(std::abs(sim.energy_imbalance_J()) / sim.thermal_energy_J(), 1e-9);
+  const ThermalWall& paddle = sim.wall_thermal[2];
+  ASSERT_EQ(paddle.segment_temperature_K.size(), 4u);
+  double stored_J = 0.0;
+  for (std::size_t s = 0; s < 4; ++s)
+    stored_J += paddle.rod.segment_heat_capacity_J_per_K[s] * (paddle.segment_temperature_K[s] - 150.0);
+  const double flows_J = std::abs(paddle.generated_heat_J) + std::abs(paddle.heat_to_particles_J) +
+                         std::abs(paddle.held_end_heat_in_J) + std::abs(paddle.radiated_heat_J);
+  EXPECT_NEAR(stored_J,
+              paddle.generated_heat_J - paddle.heat_to_particles_J + paddle.held_end_heat_in_J - paddle.radiated_heat_J,
+              1e-9 * flows_J);
+  EXPECT_GT(paddle.generated_heat_J, 0.0);
+  EXPECT_LT(paddle.held_end_heat_in_J, 0.0);
+  EXPECT_GT(paddle.radiated_heat_J, 0.0);
+  EXPECT_GT(paddle.segment_temperature_K[0], paddle.segment_temperature_K[3]);
+  for (double t : paddle.segment_temperature_K) EXPECT_GE(paddle.peak_temperature_K, t);
+}
+
 }  // namespace
 }  // namespace regodem::testing

@@ -22,8 +22,8 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include "child_runs.hpp"
 #include "commands.hpp"
+#include "design_runs.hpp"
 #include "core/error.hpp"
 #include "doe/central_composite_design.hpp"
 #include "doe/response_surface_fit.hpp"
@@ -47,206 +47,12 @@ using doe::CalibrationSpec;
 using nlohmann::json;
 using nlohmann::ordered_json;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-/// `--set PATH=VALUE UNIT`: the number in its shortest exact form, so that the run
-/// gets exactly the double the calibration computed.
-std::string set_text(const std::string& path, double value, const std::string& unit) {
-  return unit.empty() ? fmt::format("{}={}", path, value) : fmt::format("{}={} {}", path, value, unit);
-}
-
-/// One `regodem run` of the calibration and what it was given.
-struct PlannedRun {
-  int number = 0;    // 1 the reference, then the design points, the verification last
-  std::string name;  // "reference", "point_03", "verification"
-  std::string scenario;
-  std::vector<std::string> set;
-  std::string description;  // the factor values, for progress lines
-};
-
-/// What an earlier calibrate left in a run's directory.
-struct Prior {
-  bool done = false;
-  std::string why;  // why it runs (again)
-};
-
-/// Done: summary.json says completed, for the same scenario bytes and --set list (the
-/// scenario hash covers both). Files the scenario reads (a checkpoint, a particle file)
-/// are not covered.
-Prior prior_state(const fs::path& directory, const PlannedRun& run) {
-  const fs::path summary_path = directory / "summary.json";
-  std::error_code ignored;
-  if (!fs::exists(summary_path, ignored))
-    return {false, fs::exists(directory, ignored) ? "started before but did not finish" : ""};
-  ordered_json summary;
-  try {
-    summary = ordered_json::parse(read_text(summary_path));
-  } catch (const ordered_json::exception&) {
-    return {false, "its summary.json cannot be read"};
-  }
-  // A summary of another shape (edited, or not a run's) is run again, saying why.
-  const auto text_at = [&](const std::string& key) {
-    const ordered_json& value = json_at_path(summary, key);
-    if (!value.is_string()) throw InputError(fmt::format("'{}' is {}, not a text", key, value.dump()));
-    return value.get<std::string>();
-  };
-  try {
-    const std::string outcome = text_at("outcome");
-    if (outcome != "completed") return {false, fmt::format("it ended '{}' before", outcome)};
-    const std::string hash = scenario_content_hash(read_text(run.scenario), run.set);
-    if (text_at("scenario.hash") != hash) return {false, "its inputs changed (the scenario file or the --set values)"};
-  } catch (const InputError& problem) {
-    return {false, fmt::format("{}: not a run's summary: {}", summary_path.string(), problem.what())};
-  }
-  return {true, ""};
-}
-
-/// A finished run's summary; one that is not JSON is named.
-ordered_json read_summary(const fs::path& directory) {
-  const fs::path file = directory / "summary.json";
-  try {
-    return ordered_json::parse(read_text(file));
-  } catch (const ordered_json::exception& error) {
-    throw InputError(fmt::format("{}: cannot be read as JSON: {}", file.string(), error.what()));
-  }
-}
-
-/// The failed run's own message (summary.json), else the end of its log.
-std::string failure_message(const fs::path& directory, const fs::path& log) {
-  try {
-    const ordered_json summary = read_summary(directory);
-    const std::string message = summary.value("message", "");
-    if (!message.empty()) return message;
-  } catch (const std::exception&) {
-  }
-  std::string text = read_text(log);
-  while (!text.empty() && text.back() == '\n') text.pop_back();
-  const auto start = text.size() > 600 ? text.rfind('\n', text.size() - 600) : std::string::npos;
-  return start == std::string::npos ? text : text.substr(start + 1);
-}
-
-/// Runs, skips and reports a batch of runs; keeps the progress count across batches.
-class RunBatches {
- public:
-  RunBatches(const CalibrationSpec& spec, fs::path output, int processes, int total_runs,
-             const std::atomic<int>& signals)
-      : spec_(spec),
-        output_(std::move(output)),
-        processes_(processes),
-        total_(total_runs),
-        signals_(signals),
-        program_(own_executable()) {}
-
-  fs::path directory(const PlannedRun& run) const { return output_ / "runs" / run.name; }
-  fs::path log(const PlannedRun& run) const { return output_ / "logs" / (run.name + ".log"); }
-
-  /// Runs those of `runs` not already done. Returns exit_status::success, interrupted
-  /// or run_failed (after saying which run failed and why).
-  int run(const std::vector<PlannedRun>& runs) {
-    std::vector<ChildJob> jobs;
-    std::vector<const PlannedRun*> to_run;
-    for (const PlannedRun& planned : runs) {
-      const Prior prior = prior_state(directory(planned), planned);
-      if (prior.done) {
-        ++finished_;
-        say(fmt::format("[{}/{}] {}: already done, skipped (runs/{}; {} of {} finished)", planned.number, total_,
-                        planned.name, planned.name, finished_, total_));
-        continue;
-      }
-      ChildJob job;
-      job.arguments = {"run",       planned.scenario,
-                       "-o",        directory(planned).string(),
-                       "--threads", std::to_string(spec_.threads_per_run)};
-      for (const std::string& s : planned.set) {
-        job.arguments.push_back("--set");
-        job.arguments.push_back(s);
-      }
-      std::error_code ignored;
-      if (fs::exists(directory(planned), ignored) && !fs::is_empty(directory(planned), ignored)) {
-        job.arguments.push_back("--overwrite");
-        say(fmt::format("{}: runs again: {}", planned.name, prior.why));
-      }
-      job.log = log(planned);
-      jobs.push_back(std::move(job));
-      to_run.push_back(&planned);
-    }
-    if (jobs.empty()) return exit_status::success;
-    fs::create_directories(output_ / "logs");
-    ChildEvents events;
-    events.started = [&](std::size_t j) {
-      say(fmt::format("[{}/{}] {} started{}", to_run[j]->number, total_, to_run[j]->name,
-                      to_run[j]->description.empty() ? "" : ": " + to_run[j]->description));
-    };
-    events.finished = [&](std::size_t j, const ChildResult& result) {
-      if (result.exit_code != 0) {
-        say(fmt::format("[{}/{}] {} {} after {} (exit status {})", to_run[j]->number, total_, to_run[j]->name,
-                        result.exit_code == exit_status::interrupted ? "stopped" : "FAILED",
-                        format_wall_duration(result.wall_s), result.exit_code));
-        return;
-      }
-      ++finished_;
-      ++ran_;
-      run_wall_s_ += result.wall_s;
-      const int left = total_ - finished_;
-      const double mean_s = run_wall_s_ / ran_;
-      const double left_s = mean_s * std::ceil(static_cast<double>(left) / processes_);
-      say(fmt::format("[{}/{}] {} done in {} ({} of {} finished){}", to_run[j]->number, total_, to_run[j]->name,
-                      format_wall_duration(result.wall_s), finished_, total_,
-                      left > 0
-                          ? fmt::format("; about {} left ({} more, {} at once, {} a run on average)",
-                                        format_wall_duration(left_s), left, processes_, format_wall_duration(mean_s))
-                          : ""));
-    };
-    const auto results = run_children(program_, jobs, processes_, signals_, events);
-    if (signals_.load() > 0) return exit_status::interrupted;
-    for (std::size_t j = 0; j < jobs.size(); ++j) {
-      if (results[j] && results[j]->exit_code != 0) {
-        fmt::print(stderr, "regodem: error: run '{}' failed (exit status {}): {}\n  its outputs: {}\n  its log: {}\n",
-                   to_run[j]->name, results[j]->exit_code, failure_message(directory(*to_run[j]), jobs[j].log),
-                   directory(*to_run[j]).string(), jobs[j].log.string());
-        return exit_status::run_failed;
-      }
-    }
-    return exit_status::success;
-  }
-
-  int finished() const { return finished_; }
-
-  static void say(const std::string& line) {
-    fmt::print("{}\n", line);
-    std::fflush(stdout);  // progress must show when stdout is a file or a pipe
-  }
-
- private:
-  const CalibrationSpec& spec_;
-  fs::path output_;
-  int processes_;
-  int total_;
-  const std::atomic<int>& signals_;
-  std::string program_;
-  int finished_ = 0, ran_ = 0;
-  double run_wall_s_ = 0.0;
-};
-
 /// The values the reference gives: targets and pass_on --set texts.
 struct ReferenceValues {
   std::vector<double> targets;  // per response
   std::vector<std::string> pass_on_set;
   ordered_json pass_on_json = ordered_json::array();
 };
-
-/// Reads a number from a run's summary; a missing key is a mistake in the calibration file.
-double summary_number(const ordered_json& summary, const std::string& path, const std::string& where,
-                      const std::string& run) {
-  try {
-    return json_number_at_path(summary, path);
-  } catch (const InputError& problem) {
-    throw InputError(fmt::format("{}: in runs/{}/summary.json: {}", where, run, problem.what()));
-  }
-}
 
 ReferenceValues reference_values(const CalibrationSpec& spec, const ordered_json& summary) {
   ReferenceValues values;
@@ -285,7 +91,7 @@ std::vector<std::string> factor_names(const CalibrationSpec& spec) {
 std::vector<std::string> factor_sets(const CalibrationSpec& spec, const std::vector<double>& x) {
   std::vector<std::string> sets;
   for (std::size_t f = 0; f < spec.factors.size(); ++f)
-    sets.push_back(set_text(spec.factors[f].set_path, x[f], spec.factors[f].design.unit));
+    sets.push_back(factor_set_text(spec.factors[f], x[f]));
   return sets;
 }
 
@@ -315,20 +121,6 @@ void check_scenarios(const CalibrationSpec& spec, const doe::CentralCompositeDes
                                    spec.file, what, problem.what()));
     }
   }
-}
-
-/// Each factor's smallest to largest value in the design (±α).
-std::vector<doe::FactorRange> design_ranges(const doe::CentralCompositeDesign& design) {
-  std::vector<doe::FactorRange> ranges;
-  for (std::size_t f = 0; f < design.factors.size(); ++f) {
-    doe::FactorRange range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-    for (const auto& point : design.runs) {
-      range.low = std::min(range.low, point.actual[f]);
-      range.high = std::max(range.high, point.actual[f]);
-    }
-    ranges.push_back(range);
-  }
-  return ranges;
 }
 
 std::size_t index_of(const std::vector<std::string>& names, const std::string& name) {
@@ -409,25 +201,6 @@ std::size_t chosen_solution(const CalibrationSpec& spec, const std::vector<doe::
   return best;
 }
 
-std::string header(const std::string& name, const std::string& unit) {
-  return unit.empty() ? name : fmt::format("{} [{}]", name, unit);
-}
-
-std::string runs_csv(const CalibrationSpec& spec, const doe::CentralCompositeDesign& design,
-                     const std::vector<std::vector<double>>& y) {
-  std::string text = "run,point_type";
-  for (const auto& f : spec.factors) text += "," + header(f.design.name, f.design.unit);
-  for (const auto& r : spec.responses) text += "," + header(r.name, r.unit);
-  text += "\n";
-  for (std::size_t p = 0; p < design.runs.size(); ++p) {
-    text += fmt::format("point_{:02},{}", p + 1, doe::point_type_name(design.runs[p].type));
-    for (const double v : design.runs[p].actual) text += fmt::format(",{}", v);
-    for (const double v : y[p]) text += fmt::format(",{}", v);
-    text += "\n";
-  }
-  return text;
-}
-
 std::string interrupted_line(const CalibrateOptions& options, const fs::path& output, int finished, int total) {
   return fmt::format(
       "regodem: calibration interrupted with {} of {} runs finished; they are kept and will not run again, the "
@@ -464,7 +237,7 @@ int calibrate(const CalibrateOptions& options) {
                   spec.file, design.runs.size(), spec.factors.size(), design.alpha, total, processes,
                   spec.threads_per_run, spec.threads_per_run == 1 ? "" : "s", output.string()));
   const std::atomic<int>& signals = install_signal_counter();
-  RunBatches batches(spec, output, processes, total, signals);
+  RunBatches batches(output, processes, spec.threads_per_run, total, signals);
   const auto stopped = [&](int status) {
     if (status == exit_status::interrupted)
       fmt::print(stderr, "{}\n", interrupted_line(options, output, batches.finished(), total));
@@ -501,7 +274,9 @@ int calibrate(const CalibrateOptions& options) {
     for (const auto& r : spec.responses)
       y.back().push_back(summary_number(summary, r.json_path, r.where, points[p].name));
   }
-  write_file_atomically(output / "runs.csv", runs_csv(spec, design, y));
+  std::vector<NamedUnit> response_columns;
+  for (const auto& r : spec.responses) response_columns.push_back({r.name, r.unit});
+  write_file_atomically(output / "runs.csv", runs_csv(spec.factors, response_columns, design, y));
   std::vector<doe::ResponseSurfaceFit> fits;
   std::string fit_text;
   json fit_document;

@@ -89,6 +89,13 @@ struct CalibrateOptions {
   int processes = 0;             // 0: the file's `processes`
 };
 
+/// `regodem envelope` (command_envelope.cpp).
+struct EnvelopeOptions {
+  std::string envelope_path;
+  std::string output_directory;  // empty: out/<envelope file stem>
+  int processes = 0;             // 0: the file's `processes`
+};
+
 /// `regodem estimate` (command_estimate.cpp).
 struct EstimateCommandOptions {
   std::string scenario_path;
@@ -104,6 +111,7 @@ struct EstimateCommandOptions {
 CLI::App* add_doe_command(CLI::App& app, DoeOptions& options);
 CLI::App* add_fit_command(CLI::App& app, FitOptions& options);
 CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& options);
+CLI::App* add_envelope_command(CLI::App& app, EnvelopeOptions& options);
 CLI::App* add_estimate_command(CLI::App& app, EstimateCommandOptions& options);
 
 int run_scenario(const RunOptions& options);
@@ -113,6 +121,7 @@ int resume_run(const ResumeOptions& options);
 int run_doe(const DoeOptions& options);
 int run_fit(const FitOptions& options);
 int run_calibrate(const CalibrateOptions& options);
+int run_envelope(const EnvelopeOptions& options);
 int estimate_scenario(const EstimateCommandOptions& options);
 int plot_runs(const PlotOptions& options);
 int validate_scenario(const ValidateOptions& options);

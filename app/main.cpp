@@ -1,6 +1,6 @@
 // regodem: the command line. Parses the arguments and hands over to one subcommand
 // (command_run.cpp, command_validate.cpp, command_info.cpp, command_plot.cpp,
-// command_doe.cpp, command_fit.cpp, command_calibrate.cpp, command_estimate.cpp).
+// command_doe.cpp, command_fit.cpp, command_calibrate.cpp, command_envelope.cpp, command_estimate.cpp).
 #include <exception>
 #include <string>
 #include <vector>
@@ -129,6 +129,8 @@ int main(int argc, char** argv) {
   CLI::App* fit = add_fit_command(app, fit_options);
   CalibrateOptions calibrate_options;
   CLI::App* calibrate = add_calibrate_command(app, calibrate_options);
+  EnvelopeOptions envelope_options;
+  CLI::App* envelope = add_envelope_command(app, envelope_options);
   EstimateCommandOptions estimate_options;
   CLI::App* estimate = add_estimate_command(app, estimate_options);
 
@@ -141,7 +143,7 @@ int main(int argc, char** argv) {
     // CLI11 reports a misspelt subcommand only as "a subcommand is required".
     const std::vector<std::string> unparsed = app.remaining();
     if (app.get_subcommands().empty() && !unparsed.empty() && !unparsed.front().starts_with('-')) {
-      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, resume, validate, estimate, plot, doe, fit, calibrate and info (see regodem --help)\n",
+      fmt::print(stderr, "regodem: unknown command '{}'; the commands are run, resume, validate, estimate, plot, doe, fit, calibrate, envelope and info (see regodem --help)\n",
                  unparsed.front());
       return exit_status::bad_input;
     }
@@ -165,6 +167,7 @@ int main(int argc, char** argv) {
     if (*doe) return run_doe(doe_options);
     if (*fit) return run_fit(fit_options);
     if (*calibrate) return run_calibrate(calibrate_options);
+    if (*envelope) return run_envelope(envelope_options);
     if (*estimate) return estimate_scenario(estimate_options);
   } catch (const regodem::InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());

@@ -4,6 +4,7 @@
     regodem_plot.py OUTDIR [OUTDIR...] [--labels A,B,...] [--out DIR]
                     [--section] [--section-axis z] [--section-through X,Y,Z]
                     [--section-thickness M]
+    regodem_plot.py --envelope ENVELOPE_OUTDIR --threshold VALUE   (regodem envelope's map)
 
 Reads each run's time_series.csv (header "name [unit]") and any other CSV with such a
 header in the run's folder and in regions/ (region and band series), each profile in
@@ -781,9 +782,60 @@ def parse_point(text):
     return values
 
 
+def plot_envelope(directory, threshold):
+    """`regodem envelope`'s map: the fitted response over the two mapped factors (map.csv,
+    a grid), the threshold contour in black, the region beyond the design's circle
+    hatched (the surface extrapolates there), the design points (runs.csv) marked, filled
+    where the measured response reached the threshold. Written as DIRECTORY/envelope_map.png."""
+    grid = Series(os.path.join(directory, "map.csv"))
+    if len(grid.names) != 4 or not len(grid.data):
+        raise BadInput(f"{grid.path}: expected four columns (x, y, response, inside_design) and a grid of rows")
+    xn, yn, rn, inside_name = grid.names
+    x, y, z = grid.column(xn), grid.column(yn), grid.column(rn)
+    nx = len(np.unique(x))
+    if nx * (len(x) // nx) != len(x):
+        raise BadInput(f"{grid.path}: the rows are not a full grid")
+    X, Y, Z, inside = (a.reshape(-1, nx) for a in (x, y, z, grid.column(inside_name)))
+    fig, (ax,) = new_figure()
+    filled = ax.contourf(X, Y, Z, levels=20, cmap="coolwarm")
+    fig.colorbar(filled, ax=ax, label=grid.label(rn, rn + " (fitted)"))
+    if Z.min() < threshold < Z.max():
+        line = ax.contour(X, Y, Z, levels=[threshold], colors="black", linewidths=2.0)
+        ax.clabel(line, fmt=lambda v: f"{v:.4g}", fontsize="small")
+    if (inside < 0.5).any():  # beyond every design point: the surface extrapolates there
+        ax.contourf(X, Y, inside, levels=[-0.5, 0.5], colors="none", hatches=["//"])
+        ax.contour(X, Y, inside, levels=[0.5], colors="grey", linewidths=0.8, linestyles="dashed")
+    points = []
+    with open(os.path.join(directory, "runs.csv"), newline="") as f:
+        rows = list(csv.reader(f))
+    head = [HEADER.match(h).group(1).strip() if HEADER.match(h) else h.strip() for h in rows[0]]
+    for row in rows[1:]:
+        if len(row) == len(head):
+            points.append((float(row[head.index(xn)]), float(row[head.index(yn)]), float(row[head.index(rn)])))
+    if points:
+        px, py, pz = (np.array(c) for c in zip(*points))
+        hot = pz >= threshold
+        ax.scatter(px[~hot], py[~hot], marker="o", facecolors="white", edgecolors="black", zorder=3,
+                   label=f"design point, measured below {threshold:.4g}")
+        if hot.any():
+            ax.scatter(px[hot], py[hot], marker="o", color="black", zorder=3,
+                       label=f"design point, measured at or above {threshold:.4g}")
+        ax.legend(fontsize="x-small", loc="best")
+    ax.set_xlabel(grid.label(xn, xn))
+    ax.set_ylabel(grid.label(yn, yn))
+    unit = f" {grid.units[rn]}" if grid.units.get(rn) else ""
+    ax.set_title(f"{rn}: the threshold {threshold:.4g}{unit} (black line) over {xn} x {yn}")
+    fig.tight_layout()
+    written = []
+    save(fig, directory, "envelope_map.png", written)
+    return written
+
+
 def main(argv):
     parser = argparse.ArgumentParser(prog="regodem plot", description=__doc__.split("\n\n")[0])
-    parser.add_argument("runs", nargs="+", metavar="OUTDIR")
+    parser.add_argument("runs", nargs="*", metavar="OUTDIR")
+    parser.add_argument("--envelope", metavar="ENVELOPE_OUTDIR", help="draw `regodem envelope`'s map there")
+    parser.add_argument("--threshold", type=float, default=float("nan"))
     parser.add_argument("--labels", help="comma-separated, one per OUTDIR")
     parser.add_argument("--out", help="folder for the PNG files (default: FIRST_OUTDIR/plots)")
     parser.add_argument("--section", action="store_true")
@@ -791,6 +843,16 @@ def main(argv):
     parser.add_argument("--section-through", default="0,0,0")
     parser.add_argument("--section-thickness", type=float, default=0.0)
     args = parser.parse_args(argv)
+    if args.envelope:
+        try:
+            for path in plot_envelope(args.envelope, args.threshold):
+                print(path)
+        except BadInput as error:
+            print(f"regodem plot: error: {error}", file=sys.stderr)
+            return 2
+        return 0
+    if not args.runs:
+        parser.error("give at least one OUTDIR")
     try:
         args.section_through = parse_point(args.section_through)
         if args.section_thickness < 0 or not math.isfinite(args.section_thickness):

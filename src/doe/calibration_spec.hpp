@@ -24,6 +24,9 @@ struct PassOn {
 struct CalibrationFactor {
   DesignFactor design;   // name, unit, centre, step
   std::string set_path;  // e.g. "walls.sieve.thermal.specific_heat"
+  // The value as the scenario takes it, `{}` standing for the number: "[0, 0, -{} mm/s]"
+  // for a feed that is a velocity vector. Empty: "NUMBER UNIT".
+  std::string value_template;
 };
 
 /// A response read from summary.json, and the value the calibration wants of it.

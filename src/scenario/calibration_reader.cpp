@@ -1,5 +1,6 @@
-// The calibration file: the same located, collect-everything reading as scenarios
-// (yaml_section.hpp), so a user sees every problem of the file in one go.
+// The files of design studies, calibration and envelope: the same located,
+// collect-everything reading as scenarios (yaml_section.hpp), so a user sees every
+// problem of the file in one go. Factors, designs and run counts read alike in both.
 #include "scenario/calibration_reader.hpp"
 
 #include <filesystem>
@@ -20,6 +21,16 @@ namespace fs = std::filesystem;
 using doe::CalibrationSpec;
 
 std::string located(const YamlValue& value) { return value.where().describe(); }
+
+/// The text of a study's file; `what` names it in the message ("calibration").
+std::string read_study_file(const std::string& path, const char* what) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) throw InputError(fmt::format("{}: no such {} file", path, what));
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.is_open() || in.bad()) throw InputError(fmt::format("{}: cannot read the {} file", path, what));
+  return text;
+}
 
 /// A scenario file named relative to the calibration file, returned absolute.
 std::optional<std::string> read_scenario_path(const YamlSection& section, const std::string& base_directory) {
@@ -112,11 +123,11 @@ std::vector<YamlValue> required_items(const YamlSection& root, std::string_view 
   return items.value_or(std::vector<YamlValue>{});
 }
 
-void read_factors(const YamlSection& root, CalibrationSpec& spec) {
+void read_factors(const YamlSection& root, std::vector<doe::CalibrationFactor>& factors) {
   for (const YamlValue& item : required_items(root, "factors", "factor")) {
     const auto entry = item.section();
     if (!entry) continue;
-    entry->allow_only({"name", "set", "centre", "step", "unit"});
+    entry->allow_only({"name", "set", "centre", "step", "unit", "value"});
     doe::CalibrationFactor f;
     if (const auto name_value = entry->require("name")) f.design.name = name_value->name().value_or("");
     f.set_path = read_key_path(*entry, "set").value_or("");
@@ -129,19 +140,28 @@ void read_factors(const YamlSection& root, CalibrationSpec& spec) {
         entry->get("step")->error("must be greater than 0 (the actual change per coded unit)");
       }
     }
-    for (const doe::CalibrationFactor& other : spec.factors) {
+    if (const auto value = entry->get("value")) {
+      f.value_template = value->text().value_or("");
+      const std::size_t at = f.value_template.find("{}");
+      if (at == std::string::npos || f.value_template.find("{}", at + 2) != std::string::npos)
+        value->error(fmt::format("'{}' must hold `{{}}` once, where the number goes (e.g. \"[0, 0, -{{}} mm/s]\")",
+                                 f.value_template));
+      else if (entry->has("unit") && f.value_template.find(f.design.unit) == std::string::npos)
+        value->error("the template gives the unit itself; `unit` then only names it, and it is not in the template");
+    }
+    for (const doe::CalibrationFactor& other : factors) {
       if (!f.design.name.empty() && other.design.name == f.design.name)
         item.error(fmt::format("a second factor named '{}'", f.design.name));
       if (!f.set_path.empty() && other.set_path == f.set_path)
         item.error(
             fmt::format("factors '{}' and '{}' set the same key '{}'", other.design.name, f.design.name, f.set_path));
     }
-    spec.factors.push_back(f);
+    factors.push_back(f);
   }
 }
 
-void read_design(const YamlSection& root, CalibrationSpec& spec) {
-  spec.design.centre_points = 3;  // as the paper
+void read_design(const YamlSection& root, doe::CcdOptions& design) {
+  design.centre_points = 3;  // as the paper
   const auto value = root.get("design");
   if (!value) return;
   const auto section = value->section();
@@ -150,21 +170,47 @@ void read_design(const YamlSection& root, CalibrationSpec& spec) {
   if (const auto alpha = section->get("alpha")) {
     const auto text = alpha->text();
     if (text && *text == "rotatable") {
-      spec.design.alpha_kind = doe::AlphaKind::rotatable;
+      design.alpha_kind = doe::AlphaKind::rotatable;
     } else if (text && *text == "face") {
-      spec.design.alpha_kind = doe::AlphaKind::face;
+      design.alpha_kind = doe::AlphaKind::face;
     } else if (text) {
       try {
-        spec.design.alpha = parse_quantity(*text, Dimension::dimensionless);
-        spec.design.alpha_kind = doe::AlphaKind::given;
-        if (!(spec.design.alpha > 0.0)) alpha->error("α must be greater than 0");
+        design.alpha = parse_quantity(*text, Dimension::dimensionless);
+        design.alpha_kind = doe::AlphaKind::given;
+        if (!(design.alpha > 0.0)) alpha->error("α must be greater than 0");
       } catch (const InputError&) {
         alpha->error(fmt::format("'{}' is not rotatable, face or a number", *text));
       }
     }
   }
   if (const auto points = section->get("centre_points"))
-    spec.design.centre_points = static_cast<int>(points->whole_number().value_or(3));
+    design.centre_points = static_cast<int>(points->whole_number().value_or(3));
+}
+
+/// A response's `terms` (as `regodem fit --terms`), checked against the factors; "" for the full quadratic.
+std::string read_terms(const YamlSection& entry, const std::vector<std::string>& factor_names) {
+  const auto terms = entry.get("terms");
+  if (!terms) return "";
+  const std::string text = terms->text().value_or("full");
+  if (text == "full") return "";
+  try {
+    doe::parse_terms(text, factor_names);
+    return text;
+  } catch (const InputError& problem) {
+    terms->error(problem.what());
+  }
+  return "";
+}
+
+/// A response's name is new among the responses and is no factor's.
+template <typename Response>
+void check_response_name(const YamlValue& item, const std::string& name, const std::vector<Response>& responses,
+                         const std::vector<std::string>& factor_names) {
+  if (name.empty()) return;
+  for (const auto& other : responses)
+    if (other.name == name) item.error(fmt::format("a second response named '{}'", name));
+  for (const auto& factor : factor_names)
+    if (factor == name) item.error(fmt::format("'{}' is a factor's name too", name));
 }
 
 void read_target(const YamlValue& value, doe::CalibrationResponse& response) {
@@ -200,21 +246,8 @@ void read_responses(const YamlSection& root, CalibrationSpec& spec) {
     r.json_path = read_key_path(*entry, "value").value_or("");
     r.unit = entry->text("unit").value_or("");
     if (const auto target = entry->require("target")) read_target(*target, r);
-    if (const auto terms = entry->get("terms")) {
-      const std::string text = terms->text().value_or("full");
-      if (text != "full") {
-        try {
-          doe::parse_terms(text, factor_names);
-          r.terms = text;
-        } catch (const InputError& problem) {
-          terms->error(problem.what());
-        }
-      }
-    }
-    for (const auto& other : spec.responses)
-      if (!r.name.empty() && other.name == r.name) item.error(fmt::format("a second response named '{}'", r.name));
-    for (const auto& name : factor_names)
-      if (!r.name.empty() && name == r.name) item.error(fmt::format("'{}' is a factor's name too", r.name));
+    r.terms = read_terms(*entry, factor_names);
+    check_response_name(item, r.name, spec.responses, factor_names);
     spec.responses.push_back(r);
   }
 }
@@ -302,12 +335,116 @@ std::optional<int> read_count(const YamlSection& root, std::string_view key) {
   return std::nullopt;
 }
 
-void read_runs(const YamlSection& root, CalibrationSpec& spec) {
-  spec.processes = read_count(root, "processes").value_or(spec.processes);
-  spec.threads_per_run = read_count(root, "threads_per_run").value_or(spec.threads_per_run);
+void read_runs(const YamlSection& root, int& processes, int& threads_per_run) {
+  processes = read_count(root, "processes").value_or(processes);
+  threads_per_run = read_count(root, "threads_per_run").value_or(threads_per_run);
+}
+
+/// Envelope responses: a summary.json value, or a column of one of the run's CSV files reduced.
+void read_envelope_responses(const YamlSection& root, doe::EnvelopeSpec& spec) {
+  std::vector<std::string> factor_names;
+  for (const auto& f : spec.factors) factor_names.push_back(f.design.name);
+  for (const YamlValue& item : required_items(root, "responses", "response")) {
+    const auto entry = item.section();
+    if (!entry) continue;
+    entry->allow_only({"name", "value", "series", "unit", "terms"});
+    doe::EnvelopeResponse r;
+    r.where = located(item);
+    if (const auto name_value = entry->require("name")) r.name = name_value->name().value_or("");
+    r.unit = entry->text("unit").value_or("");
+    const auto which = entry->exactly_one_of({"value", "series"});
+    if (which && *which == "value") r.json_path = read_key_path(*entry, "value").value_or("");
+    if (which && *which == "series") {
+      if (const auto series = entry->get("series")->section()) {
+        series->allow_only({"file", "column", "reduce"});
+        r.series_file = series->text("file").value_or("time_series.csv");
+        if (const auto column = series->require("column")) r.series_column = column->text().value_or("");
+        if (const auto reduce = series->get("reduce")) {
+          const std::string how = reduce->choice({"max", "min", "mean", "final"}).value_or("max");
+          r.reduction = how == "min"    ? doe::SeriesReduction::min
+                        : how == "mean" ? doe::SeriesReduction::mean
+                        : how == "final" ? doe::SeriesReduction::final
+                                         : doe::SeriesReduction::max;
+        }
+        if (fs::path(r.series_file).is_absolute() || r.series_file.find("..") != std::string::npos)
+          series->get("file")->error("a file of the run's own folder: a relative path without '..'");
+      }
+    }
+    r.terms = read_terms(*entry, factor_names);
+    check_response_name(item, r.name, spec.responses, factor_names);
+    spec.responses.push_back(r);
+  }
+}
+
+void read_envelope_map(const YamlSection& root, doe::EnvelopeSpec& spec) {
+  const auto value = root.require("map");
+  if (!value) return;
+  const auto map = value->section();
+  if (!map) return;
+  map->allow_only({"x", "y", "response", "threshold", "grid"});
+  doe::EnvelopeMap& m = spec.map;
+  m.where = located(*value);
+  const auto name_of = [&](std::string_view key, bool factor) {
+    const auto v = map->require(key);
+    if (!v) return std::string();
+    const std::string name = v->text().value_or("");
+    bool known = false;
+    if (factor)
+      for (const auto& f : spec.factors) known = known || f.design.name == name;
+    else
+      for (const auto& r : spec.responses) known = known || r.name == name;
+    if (!name.empty() && !known)
+      v->error(fmt::format("'{}' is not one of the {}", name, factor ? "factors" : "responses"));
+    return name;
+  };
+  m.x = name_of("x", true);
+  m.y = name_of("y", true);
+  if (!m.x.empty() && m.x == m.y) map->get("y")->error("the map needs two different factors");
+  m.response = name_of("response", false);
+  if (const auto threshold = map->require("threshold")) m.threshold = threshold->quantity(Dimension::dimensionless).value_or(0.0);
+  if (const auto grid = map->get("grid")) {
+    const auto n = grid->whole_number();
+    if (n && (*n < 5 || *n > 1001)) grid->error(fmt::format("must be 5 to 1001, got {}", *n));
+    if (n && *n >= 5 && *n <= 1001) m.grid = static_cast<int>(*n);
+  }
 }
 
 }  // namespace
+
+doe::EnvelopeSpec read_envelope_string(const std::string& yaml_text, const std::string& file_name_for_messages) {
+  ScenarioReadContext context;
+  context.file = file_name_for_messages;
+  const YAML::Node tree = load_yaml(yaml_text, file_name_for_messages);
+  doe::EnvelopeSpec spec;
+  spec.file = file_name_for_messages;
+  const YamlValue top(context, tree, tree.Mark(), "", "");
+  const auto top_section = top.section();
+  if (!tree.IsMap() || !top_section || !top_section->has("envelope")) {
+    top.error("not an envelope file: it needs a top-level `envelope:` section (docs/drilling-heat.md)");
+    context.diagnostics.throw_if_any();
+  }
+  top_section->allow_only({"envelope"});
+  const auto root = top_section->get("envelope")->section();
+  if (root) {
+    root->allow_only({"scenario", "set", "factors", "design", "responses", "map", "processes", "threads_per_run"});
+    const std::string base = fs::path(file_name_for_messages).parent_path().string();
+    spec.scenario = read_scenario_path(*root, base).value_or("");
+    spec.set = read_set_list(*root, "set");
+    read_factors(*root, spec.factors);
+    if (spec.factors.size() < 2 && root->has("factors"))
+      root->get("factors")->error("an envelope maps over two factors at least (feed and speed)");
+    read_design(*root, spec.design);
+    read_envelope_responses(*root, spec);
+    read_envelope_map(*root, spec);
+    read_runs(*root, spec.processes, spec.threads_per_run);
+  }
+  context.diagnostics.throw_if_any();
+  return spec;
+}
+
+doe::EnvelopeSpec read_envelope_file(const std::string& path) {
+  return read_envelope_string(read_study_file(path, "envelope"), path);
+}
 
 doe::CalibrationSpec read_calibration_string(const std::string& yaml_text, const std::string& file_name_for_messages) {
   ScenarioReadContext context;
@@ -330,23 +467,18 @@ doe::CalibrationSpec read_calibration_string(const std::string& yaml_text, const
     spec.scenario = read_scenario_path(*root, base).value_or("");
     read_reference(*root, base, spec);
     spec.set = read_set_list(*root, "set");
-    read_factors(*root, spec);
-    read_design(*root, spec);
+    read_factors(*root, spec.factors);
+    read_design(*root, spec.design);
     read_responses(*root, spec);
     read_solve(*root, spec);
-    read_runs(*root, spec);
+    read_runs(*root, spec.processes, spec.threads_per_run);
   }
   context.diagnostics.throw_if_any();
   return spec;
 }
 
 doe::CalibrationSpec read_calibration_file(const std::string& path) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) throw InputError(fmt::format("{}: no such calibration file", path));
-  std::ifstream in(path, std::ios::binary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.is_open() || in.bad()) throw InputError(fmt::format("{}: cannot read the calibration file", path));
-  return read_calibration_string(text, path);
+  return read_calibration_string(read_study_file(path, "calibration"), path);
 }
 
 }  // namespace regodem

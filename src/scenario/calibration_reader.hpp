@@ -5,6 +5,7 @@
 #include <string>
 
 #include "doe/calibration_spec.hpp"
+#include "doe/envelope_spec.hpp"
 
 namespace regodem {
 
@@ -15,5 +16,9 @@ doe::CalibrationSpec read_calibration_file(const std::string& path);
 
 /// The same for text in memory; `file_name_for_messages` also anchors relative paths.
 doe::CalibrationSpec read_calibration_string(const std::string& yaml_text, const std::string& file_name_for_messages);
+
+/// An envelope file (`regodem envelope`; docs/drilling-heat.md), read the same way.
+doe::EnvelopeSpec read_envelope_file(const std::string& path);
+doe::EnvelopeSpec read_envelope_string(const std::string& yaml_text, const std::string& file_name_for_messages);
 
 }  // namespace regodem

@@ -217,7 +217,7 @@ TEST_F(CliTest, ShippedScenariosValidate) {
     // matching-cell chain is run end to end below (PaperMatchingCellChainRunsEndToEnd).
     const std::string text = read_file(entry.path());
     if (contains(text, "\ninitial_state:")) continue;
-    if (contains(text, "\ncalibration:")) continue;  // a calibration file, not a scenario
+    if (contains(text, "\ncalibration:") || contains(text, "\nenvelope:")) continue;  // a study file, not a scenario
     ++count;
     const CommandResult result = run_regodem({"validate", entry.path().string()}, directory_);
     EXPECT_EQ(result.exit_code, 0) << entry.path() << "\n" << result.output;
@@ -653,6 +653,35 @@ TEST_F(CliTest, PaperDrillingChainRunsEndToEnd) {
     EXPECT_GT(chip_final["temperature_mean_K"].get<double>(), cold_K + 0.01) << model;
     EXPECT_LE(chip_final["temperature_max_K"].get<double>(), drill_K + 1e-9) << model;
   }
+}
+
+// The shipped envelope example (scenarios/paper/tiny/drill-envelope.yaml) on the tiny
+// model with the drill as a thermal body: its 11 runs, each drill a rod of 5 segments
+// whose columns and summary reach the outputs; the fits and the map written. Plumbing:
+// the map's accuracy is EnvelopeCli's (test_envelope_cli.cpp).
+TEST_F(CliTest, TheTinyDrillEnvelopeRunsAndMapsItsThreshold) {
+  const fs::path tiny = directory_;
+  for (const std::string file : {"drill-bed.yaml", "drill-heat.yaml", "drill-envelope.yaml"})
+    fs::copy_file(fs::path(REGODEM_SOURCE_DIR) / "scenarios" / "paper" / "tiny" / file, tiny / file);
+  const CommandResult bed = run_regodem({"run", (tiny / "drill-bed.yaml").string(), "-o",
+                                         (directory_ / "out" / "bed").string(), "--threads", "1"});
+  ASSERT_EQ(bed.exit_code, 0) << bed.output;
+  const fs::path output = directory_ / "envelope";
+  const CommandResult envelope =
+      run_regodem({"envelope", (tiny / "drill-envelope.yaml").string(), "-o", output.string()});
+  ASSERT_EQ(envelope.exit_code, 0) << envelope.output;
+  const nlohmann::json e = nlohmann::json::parse(read_file(output / "envelope.json"));
+  EXPECT_EQ(e.at("responses").size(), 7u);
+  EXPECT_EQ(e.at("design_points").get<int>(), 11);
+  for (const char* file : {"map.csv", "runs.csv", "fit.txt", "envelope_map.png"})
+    EXPECT_TRUE(fs::exists(output / file)) << file;
+  const fs::path point = output / "runs" / "point_05";
+  const std::map<std::string, double> row = last_row(point / "time_series.csv");
+  for (const std::string k : {"1", "2", "3", "4", "5"}) EXPECT_EQ(row.count("drill[" + k + "].temperature [K]"), 1u) << k;
+  EXPECT_LT(std::abs(row.at("energy_imbalance [-]")), 1e-9);
+  const nlohmann::json summary = nlohmann::json::parse(read_file(point / "summary.json"));
+  EXPECT_EQ(summary.at("lumped_walls").at("drill").at("segment_temperature_K").size(), 5u);
+  EXPECT_GT(summary.at("lumped_walls").at("drill").at("radiated_heat_J").get<double>(), 0.0);
 }
 
 // The tiny sieve model drilled with the energy audit on (output.energy_audit), and again

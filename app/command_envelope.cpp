@@ -108,7 +108,8 @@ std::size_t response_index(const EnvelopeSpec& spec, const std::string& name) {
 
 /// The map: the fitted response on a grid over x and y (the design's range of each, the
 /// other factors at their centres). The box's corners lie beyond every design point (a
-/// rotatable design covers the circle of radius alpha in coded units), where the surface
+/// design covers the circle through its outermost points, radius max(alpha, sqrt 2) in
+/// coded units), where the surface
 /// extrapolates: each grid point says whether it is inside that circle, and `below` and
 /// `inside` count only the points inside. Returns map.csv's text.
 std::string map_csv(const EnvelopeSpec& spec, const doe::ResponseSurfaceFit& fit, double alpha,
@@ -130,7 +131,8 @@ std::string map_csv(const EnvelopeSpec& spec, const doe::ResponseSurfaceFit& fit
       x[fx] = ranges[fx].low + (ranges[fx].high - ranges[fx].low) * i / (n - 1);
       const double value = fit.model.evaluate(x);
       const double radius2 = coded(fx, x[fx]) * coded(fx, x[fx]) + coded(fy, x[fy]) * coded(fy, x[fy]);
-      const bool in_design = radius2 <= alpha * alpha * (1.0 + 1e-12);
+      // The circle through the outermost design points: the axial ones (alpha) or the factorial corners (sqrt 2).
+      const bool in_design = radius2 <= std::max(alpha * alpha, 2.0) * (1.0 + 1e-12);
       inside += in_design ? 1 : 0;
       below += in_design && value < spec.map.threshold ? 1 : 0;
       text += fmt::format("{},{},{},{}\n", x[fx], x[fy], value, in_design ? 1 : 0);

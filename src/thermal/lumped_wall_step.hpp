@@ -22,7 +22,7 @@ struct WallBoundaryHeat {
 };
 
 /// Steps the nodes T (in place); contact_heat_W[s] is what node s takes from its
-/// contacts (conducted and generated). Throws RunError when a step would be unstable
+/// contacts (conducted and generated). Throws SimulationError when a step would be unstable
 /// (the radiation's 4 eps sigma A T^3 grows with T).
 WallBoundaryHeat step_lumped_wall(std::span<double> temperature_K, std::span<const double> heat_capacity_J_per_K,
                                   std::span<const double> area_m2, std::span<const double> contact_heat_W,

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "checkpoint_keeper.hpp"
 #include "commands.hpp"
@@ -14,30 +15,24 @@
 
 namespace regodem::app {
 
-int resume_run(const ResumeOptions& options) {
+ResumeChoice choose_resume(const ResumeOptions& options) {
   namespace fs = std::filesystem;
   const fs::path directory(options.run_directory);
-  if (!fs::is_directory(directory)) {
-    fmt::print(stderr, "regodem: error: '{}' is not a run's output directory\n", options.run_directory);
-    return exit_status::bad_input;
-  }
-  try {
+  if (!fs::is_directory(directory))
+    throw InputError(fmt::format("'{}' is not a run's output directory", options.run_directory));
+  {
     // A live run there comes first: its checkpoints are still being written. The
     // continued run takes the lock for good once it has read the checkpoint.
     const RunDirectoryLock probe(directory, fmt::format("regodem resume {}", options.run_directory));
-  } catch (const InputError& error) {
-    fmt::print(stderr, "regodem: error: {}\n", error.what());
-    return exit_status::bad_input;
   }
   const std::vector<fs::path> files = checkpoint_files_newest_first(directory);
-  if (files.empty()) {
-    fmt::print(stderr,
-               "regodem: error: '{}' holds no checkpoint ({}/checkpoint_NNNNNN.rgck); a run writes one at the end of "
-               "each stage, every --checkpoint-every and on Ctrl-C\n",
-               options.run_directory, CheckpointKeeper::folder);
-    return exit_status::bad_input;
-  }
-  ResumePoint point;
+  if (files.empty())
+    throw InputError(fmt::format(
+        "'{}' holds no checkpoint ({}/checkpoint_NNNNNN.rgck); a run writes one at the end of each stage, every "
+        "--checkpoint-every and on Ctrl-C",
+        options.run_directory, CheckpointKeeper::folder));
+  ResumeChoice choice;
+  ResumePoint& point = choice.point;
   RunIdentity identity;
   for (const fs::path& file : files) {
     try {
@@ -45,38 +40,50 @@ int resume_run(const ResumeOptions& options) {
       identity = read_identity(point.checkpoint);
       point.file = file.string();
       if (run_completed(point.checkpoint) && file == files.front()) {
-        fmt::print("regodem: the run in {} has completed: its last checkpoint, {}, is the end of its last stage; "
-                   "nothing to resume (a new scenario can start from it with initial_state)\n",
-                   options.run_directory, point.file);
-        return exit_status::success;
+        choice.completed = true;
+        choice.notes.push_back(fmt::format(
+            "the run in {} has completed: its last checkpoint, {}, is the end of its last stage; nothing to resume (a "
+            "new scenario can start from it with initial_state)",
+            options.run_directory, point.file));
+        return choice;
       }
       break;
     } catch (const CheckpointError& error) {
-      fmt::print(stderr, "regodem: {}\n", error.what());
+      choice.notes.push_back(error.what());
       point.skipped.push_back(fmt::format("skipped an unusable checkpoint: {}", error.what()));
     }
   }
-  if (point.file.empty()) {
-    fmt::print(stderr, "regodem: error: no checkpoint in '{}' can be used (see above)\n", options.run_directory);
-    return exit_status::bad_input;
-  }
-  if (!point.skipped.empty()) fmt::print(stderr, "regodem: resuming from the previous checkpoint, {}\n", point.file);
+  if (point.file.empty())
+    throw InputError(fmt::format("no checkpoint in '{}' can be used: {}", options.run_directory,
+                                 fmt::join(choice.notes, "; ")));
+  if (!point.skipped.empty()) choice.notes.push_back(fmt::format("resuming from the previous checkpoint, {}", point.file));
 
-  RunOptions run;
+  RunOptions& run = choice.run;
   run.scenario_path = identity.scenario_path;
   run.overrides = identity.overrides;
   run.output_directory = options.run_directory;
   run.threads = options.threads > 0 ? options.threads : identity.threads;
   run.checkpoint_every_s = options.checkpoint_every_s;
   if (run.threads != identity.threads)
-    fmt::print(stderr, "regodem: note: the run used {} threads, this resume {} (the results do not depend on it)\n",
-               identity.threads, run.threads);
-  if (!fs::is_regular_file(run.scenario_path)) {
-    fmt::print(stderr, "regodem: error: the run's scenario '{}' is gone; the checkpoint needs it to continue\n",
-               run.scenario_path);
+    choice.notes.push_back(fmt::format("note: the run used {} threads, this resume {} (the results do not depend on it)",
+                                       identity.threads, run.threads));
+  if (!fs::is_regular_file(run.scenario_path))
+    throw InputError(
+        fmt::format("the run's scenario '{}' is gone; the checkpoint needs it to continue", run.scenario_path));
+  return choice;
+}
+
+int resume_run(const ResumeOptions& options) {
+  ResumeChoice choice;
+  try {
+    choice = choose_resume(options);
+  } catch (const InputError& error) {
+    fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
   }
-  return continue_run(run, point);
+  for (const std::string& note : choice.notes) fmt::print(choice.completed ? stdout : stderr, "regodem: {}\n", note);
+  if (choice.completed) return exit_status::success;
+  return continue_run(choice.run, choice.point);
 }
 
 }  // namespace regodem::app

@@ -43,6 +43,20 @@ struct ResumePoint {
   std::vector<std::string> skipped;  // newer checkpoints that could not be used, and why
 };
 
+/// What `regodem resume` found in a run's directory: the checkpoint to go on from and
+/// the run's options, or that the run has completed; `notes` says what it met on the way
+/// (checkpoints skipped, another thread count).
+struct ResumeChoice {
+  ResumePoint point;
+  RunOptions run;
+  bool completed = false;
+  std::vector<std::string> notes;
+};
+
+/// Chooses the checkpoint (command_resume.cpp). Throws InputError: no run there, none
+/// usable, a live run holding the directory, the scenario gone.
+ResumeChoice choose_resume(const ResumeOptions& options);
+
 struct ValidateOptions {
   std::string scenario_path;
   std::vector<std::string> overrides;

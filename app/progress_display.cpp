@@ -112,12 +112,14 @@ void ProgressDisplay::finish() {
 }
 
 void ProgressDisplay::print_permanent_line(const std::string& line) {
+  if (stream_ == nullptr) return;
   finish();
   fmt::print(stream_, "{}\n", line);
   std::fflush(stream_);
 }
 
 void ProgressDisplay::redraw(const std::string& line) {
+  if (stream_ == nullptr) return;
   // A line wider than the terminal wraps, and \r then returns only to the start of
   // its last row: the display would scroll instead of redrawing.
   const int width = terminal_width();

@@ -12,7 +12,7 @@ namespace regodem::app {
 
 class ProgressDisplay {
  public:
-  /// `redraw_in_place`: the stream is a terminal. `plain_interval_s`: wall seconds
+  /// A null `stream` shows nothing (a quiet run from Python). `redraw_in_place`: the stream is a terminal. `plain_interval_s`: wall seconds
   /// between plain lines when it is not.
   ProgressDisplay(std::FILE* stream, bool redraw_in_place, double plain_interval_s);
   ProgressDisplay(const ProgressDisplay&) = delete;

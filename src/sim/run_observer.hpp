@@ -2,6 +2,7 @@
 // What a running scenario reports to whoever watches it (the command line's progress
 // display, the CSV and summary writers). The simulation layer calls these hooks; it
 // never prints or writes files itself.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -88,6 +89,48 @@ class RunObserver {
   /// A checkpoint of the run as it stands (sim/run_checkpoint.hpp): when due, at the end
   /// of every stage, and before returning on a stop request. The run can go on from it.
   virtual void checkpoint(const RunState& /*state*/) {}
+  /// Called at every step boundary, after that instant's samples, snapshots and end
+  /// checks and before the step (mechanical or, in a static-bed stage, thermal): the
+  /// simulation is in a state a checkpoint could take. The Python module pauses a run
+  /// here (python/src/run_binding.cpp); the command line does nothing.
+  virtual void before_step(const Simulation& /*sim*/) {}
+};
+
+/// Hands every report to two observers, `first` then `second` (the command line's
+/// recorder and a second watcher, e.g. Python's); a checkpoint is due when either says so.
+class ObserverPair final : public RunObserver {
+ public:
+  ObserverPair(RunObserver& first, RunObserver& second) : first_(first), second_(second) {}
+  void columns(const std::vector<SeriesColumn>& c) override { first_.columns(c), second_.columns(c); }
+  void stage_started(const StageInfo& s) override { first_.stage_started(s), second_.stage_started(s); }
+  void progress(const ProgressSnapshot& p) override { first_.progress(p), second_.progress(p); }
+  double progress_interval_s() const override {
+    return std::min(first_.progress_interval_s(), second_.progress_interval_s());
+  }
+  void sample(const std::vector<double>& row) override { first_.sample(row), second_.sample(row); }
+  void snapshot(const Simulation& sim) override { first_.snapshot(sim), second_.snapshot(sim); }
+  void notice(const std::string& m) override { first_.notice(m), second_.notice(m); }
+  void stage_finished(const StageInfo& s, StageResult r, const std::string& m) override {
+    first_.stage_finished(s, r, m), second_.stage_finished(s, r, m);
+  }
+  void bonds_broken(const std::vector<BondBreakEvent>& e) override { first_.bonds_broken(e), second_.bonds_broken(e); }
+  void measurement_tables(const std::vector<MeasurementTable>& t) override {
+    first_.measurement_tables(t), second_.measurement_tables(t);
+  }
+  void measurement_rows(std::size_t table, const std::vector<std::vector<double>>& rows) override {
+    first_.measurement_rows(table, rows), second_.measurement_rows(table, rows);
+  }
+  bool checkpoint_due() override {
+    const bool a = first_.checkpoint_due();
+    const bool b = second_.checkpoint_due();
+    return a || b;
+  }
+  void checkpoint(const RunState& state) override { first_.checkpoint(state), second_.checkpoint(state); }
+  void before_step(const Simulation& sim) override { first_.before_step(sim), second_.before_step(sim); }
+
+ private:
+  RunObserver& first_;
+  RunObserver& second_;
 };
 
 struct RunOutcome {

@@ -263,6 +263,18 @@ double Simulation::particle_mechanical_energy_J(std::size_t i) const {
   return e;
 }
 
+void Simulation::set_particle_velocity(std::size_t i, const Vec3& velocity_m_per_s,
+                                       const Vec3& angular_velocity_rad_per_s) {
+  const bool finite = std::isfinite(norm2(velocity_m_per_s)) && std::isfinite(norm2(angular_velocity_rad_per_s));
+  if (!finite) throw InputError(fmt::format("particle {}: a velocity and spin must be finite", particles.id[i]));
+  if (particles.inv_mass_per_kg[i] == 0.0)
+    throw InputError(fmt::format("particle {} is held fixed: its velocity cannot be set", particles.id[i]));
+  const double before_J = particle_mechanical_energy_J(i);
+  particles.velocity_m_per_s[i] = velocity_m_per_s;
+  if (particles.inv_inertia[i] > 0.0) particles.angular_velocity_rad_per_s[i] = angular_velocity_rad_per_s;
+  audit_.exchanged_J += particle_mechanical_energy_J(i) - before_J;
+}
+
 double Simulation::elastic_energy_J() const { return contact_elastic_energy_J_ + bond_elastic_energy_J(); }
 
 double Simulation::mechanical_energy_J() const {

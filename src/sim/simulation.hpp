@@ -110,6 +110,16 @@ class Simulation {
   /// Removes the flagged particles (flags by index) between steps, with their bonds and
   /// contact history; their heat leaves the ledger's reference, as for lost particles.
   void remove_particles(const std::vector<char>& remove_flag);
+  /// Changes made from outside a run between steps (the Python module), which keep the
+  /// books closed. A particle's velocity and spin: the audit books the change of its
+  /// kinetic energy as exchanged, as for an added particle; the force of the step just
+  /// taken (its damping) was found with the old velocity. Throws InputError for a
+  /// particle held fixed or a non-finite value.
+  void set_particle_velocity(std::size_t i, const Vec3& velocity_m_per_s, const Vec3& angular_velocity_rad_per_s);
+  /// A particle's temperature (heat on): the ledger's reference takes the change of its
+  /// thermal energy, as it takes an inserted particle's; its k follows, and its peak if
+  /// the new value is above it. Throws InputError without heat or for T <= 0 K.
+  void set_particle_temperature_K(std::size_t i, double temperature_K);
   /// Moves the clock forward to time_s without moving the particles, the walls along
   /// their motions (in up to 10,000 pieces): `regodem estimate` samples a stage where
   /// its drill will be, on a bed it has built itself. Not for a run.

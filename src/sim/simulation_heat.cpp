@@ -27,6 +27,21 @@ double Simulation::thermal_energy_J() const {
   return sum;
 }
 
+void Simulation::set_particle_temperature_K(std::size_t i, double temperature_K) {
+  if (!heat_enabled())
+    throw InputError(fmt::format("particle {}: the run has no heat (heat.enabled), so no temperature to set",
+                                 particles.id[i]));
+  if (!(temperature_K > 0.0) || !std::isfinite(temperature_K))
+    throw InputError(fmt::format("particle {}: a temperature must be above 0 K, got {} K", particles.id[i],
+                                 temperature_K));
+  const double before_J = particle_thermal_energy_J(i);
+  particles.temperature_K[i] = temperature_K;
+  particles.conductivity_W_per_mK[i] = materials[particles.material[i]].conductivity_W_per_mK.at(temperature_K);
+  if (i < particles.peak_temperature_K.size())
+    particles.peak_temperature_K[i] = std::max(particles.peak_temperature_K[i], temperature_K);
+  ledger_.reference_energy_J += particle_thermal_energy_J(i) - before_J;
+}
+
 void Simulation::refresh_conductivities() {
   for (std::size_t i = 0; i < particles.size(); ++i)
     particles.conductivity_W_per_mK[i] =

@@ -503,8 +503,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             }
             break;
           }
+          observer.before_step(sim);
           frozen->advance(std::min(step_s, remaining_s));
         } else {
+          observer.before_step(sim);
           sim.step();
           if (sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
         }

@@ -211,8 +211,9 @@ void Simulation::book_end_of_step_losses() {
   // tau_r . omega_w (its own work). The contact pass took damping and friction at the
   // half-step velocities; their end-of-step part, -G . F dt/(2m) - Lambda . T dt/(2I)
   // with G and Lambda the lossy forces and torques on the body, is added here (at a few
-  // steps per contact it is tens of per cent of the loss). It heats the particle whose
-  // velocity it concerns, with dissipation heating (docs/physics.md, "Energy audit").
+  // steps per contact it is tens of per cent of the loss). With dissipation heating it
+  // heats the particle whose velocity it concerns, except the part of its wall contacts
+  // that the partition gives the wall (WallLossShare; docs/physics.md, "Energy audit").
   const std::size_t n = particles.size();
   const double half_dt = 0.5 * settings_.time_step_s;
   const bool heats = heat_enabled() && settings_.heat.dissipation_heating;
@@ -226,20 +227,55 @@ void Simulation::book_end_of_step_losses() {
   double* __restrict heat = particles.heat_flow_W.data();
   BlockEnergy* __restrict block_energy = block_energy_.data();
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
+  // The part of a wall contact's loss the wall takes (its share 1 - s, as in the contact
+  // pass) goes to the wall's node, block by block in order, so that no heat of a contact
+  // with a moving drill is left to the grain alone (docs/drilling-heat.md).
+  const WallLossShare* __restrict wall_loss = wall_loss_share_.data();
+  const bool shares = heats && wall_loss_share_.size() == n;
+  const std::size_t n_nodes = node_heat_in_W_.size();
+  const std::size_t blocks = (n + block_size - 1) / block_size;
+  if (shares) block_node_end_of_step_W_.assign(blocks * n_nodes, 0.0);
+  double* __restrict block_node = block_node_end_of_step_W_.data();
+  const double* __restrict own_spin = own_spin_resistance_N_m_.data();
+  const double dt = settings_.time_step_s;
 #pragma omp parallel for schedule(static, block_size) num_threads(active_threads_) if (n > 4096)
   for (std::size_t p = 0; p < n; ++p) {
     const LossyActions& a = lossy[p];
     const Vec3 velocity_change = force[p] * (half_dt * inv_mass[p]);
     const Vec3 spin_change = torque[p] * (half_dt * inv_inertia[p]);
-    const double loss = wall_power[p] - dot(a.rolling_torque_N_m, w[p] + spin_change) -
+    const Vec3 end_spin = w[p] + spin_change;
+    const double loss = wall_power[p] - dot(a.rolling_torque_N_m, end_spin) -
                         dot(a.lossy_force_N, velocity_change) - dot(a.lossy_torque_N_m, spin_change);
     if (loss == 0.0) continue;
     block_energy[p / block_size].dissipated_W += loss;
-    if (heats) {
-      heat[p] += loss;
-      block_energy[p / block_size].generated_heat_W += loss;
+    if (!heats) continue;
+    block_energy[p / block_size].generated_heat_W += loss;
+    double to_walls_W = 0.0;
+    if (shares && wall_loss[p].node[0] != WallLossShare::no_node) {
+      const WallLossShare& share = wall_loss[p];
+      // EDEM's own-spin torque comes from the particle's whole resistance: each wall's
+      // part of its loss is in proportion to that wall's (weighted) resistance.
+      const double own_spin_loss_W =
+          own_spin[p] > 0.0 ? -dot(RollingOwnSpin::torque(w[p], own_spin[p], inv_inertia[p], dt), end_spin) : 0.0;
+      for (int slot = 0; slot < 2 && share.node[slot] != WallLossShare::no_node; ++slot) {
+        const LossyActions& s = share.actions[slot];
+        double wall_W = share.rolling_wall_power_W[slot] - dot(s.rolling_torque_N_m, end_spin) -
+                        dot(s.lossy_force_N, velocity_change) - dot(s.lossy_torque_N_m, spin_change);
+        if (own_spin[p] > 0.0) wall_W += share.own_spin_resistance_N_m[slot] / own_spin[p] * own_spin_loss_W;
+        block_node[(p / block_size) * n_nodes + share.node[slot]] += wall_W;
+        to_walls_W += wall_W;
+      }
     }
+    heat[p] += loss - to_walls_W;
   }
+  if (!shares) return;
+  for (std::size_t b = 0; b + 1 < wall_node_begin_.size(); ++b)
+    for (std::uint32_t node = wall_node_begin_[b]; node < wall_node_begin_[b + 1]; ++node) {
+      double sum_W = 0.0;
+      for (std::size_t k = 0; k < blocks; ++k) sum_W += block_node[k * n_nodes + node];
+      node_heat_in_W_[node] += sum_W;
+      wall_generated_heat_W_[b] += sum_W;
+    }
 }
 
 void Simulation::book_mechanical_energy(double dt_s) {
@@ -527,6 +563,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   LossyActions* __restrict lossy = particle_lossy_.data();
   double* __restrict rolling_wall_power = rolling_wall_power_W_.data();
   LossyActions* __restrict share_lossy = partner_lossy_.data();
+  // The wall contacts' share of the end-of-step losses (WallLossShare): with every loss as heat.
+  const bool shares_wall_losses = audit && generate && all_losses;
+  wall_loss_share_.resize(shares_wall_losses ? particles.size() : 0);
+  WallLossShare* __restrict wall_loss_share = wall_loss_share_.data();
   const double* __restrict weight = partition_weight_.data();
   // The particle's share of a wall contact's heat (an adiabatic wall takes none).
   const auto wall_share_of_particle = [&](const WallContactHeat& wh, double weight_i, MaterialIndex wall_material) {
@@ -573,6 +613,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       double rolling_wall_power_i = 0.0;
       WallShare* __restrict wall_share = block_wall + (i / block_size) * n_bodies;
       NodeHeat* __restrict node_share = block_node + (i / block_size) * n_nodes;
+      if (shares_wall_losses) wall_loss_share[i] = WallLossShare{};
       double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
       if constexpr (Heat) {
         temperature_i = temperature[i];
@@ -697,6 +738,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             generated_i += generated;
             heat_i += share_i * generated;
             node_share[node].generated_heat_W += (1.0 - share_i) * generated;
+            if (shares_wall_losses && share_i < 1.0)
+              wall_loss_share[i].add(node, 1.0 - share_i,
+                                     LossyActions{f.rolling_torque_on_i_N_m,
+                                                  f.force_on_i_N + f.elastic_normal_force_N * normal,
+                                                  cross(normal, f.tangential_force_on_i_N) * distance_m},
+                                     dot(f.rolling_torque_on_i_N_m, wall_omega), f.own_spin_resistance_i_N_m);
           }
         }
         force_i += f.force_on_i_N;

@@ -312,6 +312,28 @@ class Simulation {
   };
   std::vector<LossyActions> particle_lossy_, partner_lossy_;
   std::vector<double> rolling_wall_power_W_;
+  // With dissipation heating, per particle: its contacts with walls that take heat, each's
+  // lossy actions weighted by the wall's share 1 - s of the heat, in up to two wall nodes
+  // (a third node joins the second). The end-of-step part of their loss is then shared as
+  // the contact pass shares the rest (book_end_of_step_losses), not left to the particle.
+  struct WallLossShare {
+    static constexpr std::uint32_t no_node = 0xffffffffu;
+    std::uint32_t node[2] = {no_node, no_node};
+    LossyActions actions[2];
+    double rolling_wall_power_W[2] = {0.0, 0.0};
+    double own_spin_resistance_N_m[2] = {0.0, 0.0};  // sum of (1 - s) mu_r F_n R_i
+    void add(std::uint32_t at_node, double wall_share, const LossyActions& a, double rolling_power_W,
+             double own_spin_N_m) {
+      const int slot = node[0] == no_node || node[0] == at_node ? 0 : 1;
+      node[slot] = node[slot] == no_node ? at_node : node[slot];
+      actions[slot] += LossyActions{a.rolling_torque_N_m * wall_share, a.lossy_force_N * wall_share,
+                                    a.lossy_torque_N_m * wall_share};
+      rolling_wall_power_W[slot] += wall_share * rolling_power_W;
+      own_spin_resistance_N_m[slot] += wall_share * own_spin_N_m;
+    }
+  };
+  std::vector<WallLossShare> wall_loss_share_;
+  std::vector<double> block_node_end_of_step_W_;  // blocks x wall nodes
   // Per particle, with a partition by conductivity or effusivity: its weight (heat_partition.hpp).
   std::vector<double> partition_weight_;
   // Per particle, each contact pass: the summed own-spin rolling resistance (RollingOwnSpin).

@@ -3,6 +3,7 @@
 // the one the run was started with, and runs on from there into the same OUTDIR (none
 // while another process holds the directory).
 #include <filesystem>
+#include <functional>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -15,7 +16,11 @@
 
 namespace regodem::app {
 
-ResumeChoice choose_resume(const ResumeOptions& options) {
+ResumeChoice choose_resume(const ResumeOptions& options, const std::function<void(const std::string&)>& note) {
+  std::vector<std::string> reasons;  // why checkpoints could not be used
+  const auto tell = [&](const std::string& text) {
+    if (note) note(text);
+  };
   namespace fs = std::filesystem;
   const fs::path directory(options.run_directory);
   if (!fs::is_directory(directory))
@@ -41,22 +46,24 @@ ResumeChoice choose_resume(const ResumeOptions& options) {
       point.file = file.string();
       if (run_completed(point.checkpoint) && file == files.front()) {
         choice.completed = true;
-        choice.notes.push_back(fmt::format(
+        choice.completed_message = fmt::format(
             "the run in {} has completed: its last checkpoint, {}, is the end of its last stage; nothing to resume (a "
             "new scenario can start from it with initial_state)",
-            options.run_directory, point.file));
+            options.run_directory, point.file);
         return choice;
       }
       break;
     } catch (const CheckpointError& error) {
-      choice.notes.push_back(error.what());
+      tell(error.what());
+      reasons.emplace_back(error.what());
       point.skipped.push_back(fmt::format("skipped an unusable checkpoint: {}", error.what()));
     }
   }
   if (point.file.empty())
-    throw InputError(fmt::format("no checkpoint in '{}' can be used: {}", options.run_directory,
-                                 fmt::join(choice.notes, "; ")));
-  if (!point.skipped.empty()) choice.notes.push_back(fmt::format("resuming from the previous checkpoint, {}", point.file));
+    throw InputError(note ? fmt::format("no checkpoint in '{}' can be used (see above)", options.run_directory)
+                          : fmt::format("no checkpoint in '{}' can be used: {}", options.run_directory,
+                                        fmt::join(reasons, "; ")));
+  if (!point.skipped.empty()) tell(fmt::format("resuming from the previous checkpoint, {}", point.file));
 
   RunOptions& run = choice.run;
   run.scenario_path = identity.scenario_path;
@@ -65,8 +72,8 @@ ResumeChoice choose_resume(const ResumeOptions& options) {
   run.threads = options.threads > 0 ? options.threads : identity.threads;
   run.checkpoint_every_s = options.checkpoint_every_s;
   if (run.threads != identity.threads)
-    choice.notes.push_back(fmt::format("note: the run used {} threads, this resume {} (the results do not depend on it)",
-                                       identity.threads, run.threads));
+    tell(fmt::format("note: the run used {} threads, this resume {} (the results do not depend on it)",
+                     identity.threads, run.threads));
   if (!fs::is_regular_file(run.scenario_path))
     throw InputError(
         fmt::format("the run's scenario '{}' is gone; the checkpoint needs it to continue", run.scenario_path));
@@ -76,13 +83,15 @@ ResumeChoice choose_resume(const ResumeOptions& options) {
 int resume_run(const ResumeOptions& options) {
   ResumeChoice choice;
   try {
-    choice = choose_resume(options);
+    choice = choose_resume(options, [](const std::string& text) { fmt::print(stderr, "regodem: {}\n", text); });
   } catch (const InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
   }
-  for (const std::string& note : choice.notes) fmt::print(choice.completed ? stdout : stderr, "regodem: {}\n", note);
-  if (choice.completed) return exit_status::success;
+  if (choice.completed) {
+    fmt::print("regodem: {}\n", choice.completed_message);
+    return exit_status::success;
+  }
   return continue_run(choice.run, choice.point);
 }
 

@@ -2,6 +2,7 @@
 // The subcommands of `regodem`: main.cpp parses the command line into these options
 // and calls one function; each lives in its own command_*.cpp.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -44,18 +45,18 @@ struct ResumePoint {
 };
 
 /// What `regodem resume` found in a run's directory: the checkpoint to go on from and
-/// the run's options, or that the run has completed; `notes` says what it met on the way
-/// (checkpoints skipped, another thread count).
+/// the run's options, or that the run has completed (and the message that says so).
 struct ResumeChoice {
   ResumePoint point;
   RunOptions run;
   bool completed = false;
-  std::vector<std::string> notes;
+  std::string completed_message;
 };
 
-/// Chooses the checkpoint (command_resume.cpp). Throws InputError: no run there, none
-/// usable, a live run holding the directory, the scenario gone.
-ResumeChoice choose_resume(const ResumeOptions& options);
+/// Chooses the checkpoint (command_resume.cpp), telling `note` what it meets on the way
+/// as it meets it (checkpoints skipped, another thread count). Throws InputError: no run
+/// there, none usable, a live run holding the directory, the scenario gone.
+ResumeChoice choose_resume(const ResumeOptions& options, const std::function<void(const std::string&)>& note = {});
 
 struct ValidateOptions {
   std::string scenario_path;

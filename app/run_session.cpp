@@ -316,7 +316,7 @@ void RunSession::begin(std::FILE* progress) {
       check_resumable(*prepared_, resume_->checkpoint, directory_);
     } else {
       for (const fs::path& kept : prepare_output_directory(directory_, options_.overwrite, run_output_names(spec_)))
-        fmt::print(stderr, "regodem: note: --overwrite kept '{}' (not a file a run writes)\n", kept.string());
+        if (progress) fmt::print(progress, "regodem: note: --overwrite kept '{}' (not a file a run writes)\n", kept.string());
     }
   } catch (const InputError&) {
     abandon();

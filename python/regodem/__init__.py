@@ -8,10 +8,10 @@
     run.step(1000)                      # 1,000 more steps
     run.run(progress=print)             # to the end
     out = regodem.read_run("out/demo-py")
-    out.time_series["time [s]"], out.summary["status"]
+    out.time_series["time [s]"], out.summary["outcome"]
 
 A run from Python is `regodem run`: the same output directory, checkpoints and
-summary, bit for bit the same numbers.
+summary; its time series and measurement files are the command line's byte for byte.
 """
 from . import _regodem
 from ._regodem import InputError, SimulationError, CheckpointError

@@ -94,7 +94,7 @@ class RunOutputs:
                 self.summary = json.load(f)
 
     def __repr__(self):
-        status = self.summary["status"] if self.summary else "no summary"
+        status = self.summary["outcome"] if self.summary else "no summary"
         return f"RunOutputs({self.directory!r}, {status}, {len(self.time_series)} samples)"
 
 

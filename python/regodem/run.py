@@ -26,6 +26,23 @@ def _seconds(duration):
     return seconds
 
 
+def _ids(ids):
+    ids = np.atleast_1d(np.asarray(ids))
+    if ids.ndim != 1 or (ids.size and (not np.issubdtype(ids.dtype, np.integer) or ids.min() < 0)):
+        raise _regodem.InputError("particle ids must be a 1-d sequence of integers >= 0")
+    return ids.astype(np.uint64)
+
+
+def _rows(values, shape, name):
+    """`values` as a float array of `shape`: one value (or one row) for all, or one per id."""
+    values = np.asarray(values, dtype=float)
+    try:
+        return np.ascontiguousarray(np.broadcast_to(values, shape))
+    except ValueError:
+        raise _regodem.InputError(f"{name} of shape {values.shape} does not fit {shape[0]} ids "
+                                  f"(give one value for all, or {shape})") from None
+
+
 class Run:
     """A run of a scenario into its output directory, as `regodem run` makes it.
 
@@ -67,12 +84,13 @@ class Run:
 
     def run_stage(self, progress=None):
         """Runs until the stage now running (or the next one) ends; the run then waits
-        between stages."""
+        between stages (after the last stage it ends: status "completed")."""
         return self._core.advance(2**64 - 1, True, progress)
 
     def run(self, progress=None):
         """Runs to the end. `progress(info)` is called about every half second with a dict
-        (stage, time_s, step, particles, particle_steps_per_s, estimated_remaining_s)."""
+        (stage, stage_index, stages, time_s, step, particles, wall_s, particle_steps_per_s,
+        estimated_remaining_s)."""
         return self._core.advance(2**64 - 1, False, progress)
 
     def close(self):
@@ -93,7 +111,8 @@ class Run:
     threads = property(lambda self: self._core.threads)
     time_s = property(lambda self: self._core.time_s, doc="Simulated time")
     step_count = property(lambda self: self._core.step, doc="Mechanical steps taken since the start")
-    stage = property(lambda self: self._core.stage, doc="The stage running or last run (None before the first)")
+    stage = property(lambda self: self._core.stage,
+                     doc="The stage running or last run: name, index, count, start_time_s, running (None before the first)")
     final_line = property(lambda self: self._core.final_line, doc="What `regodem run` prints at the end")
     message = property(lambda self: self._core.message, doc="Why the run stopped, when it did not complete")
     material_names = property(lambda self: self._core.material_names)
@@ -108,7 +127,9 @@ class Run:
         return self._core.particles()
 
     def walls(self):
-        """Each wall body: name, force_N, torque_N_m, displacement_m, position_m, depth_m
+        """Each wall body: name, force_N, torque_N_m, displacement_m, its pose (position_m
+        and rotation, x = R x0 + position for a point x0 of a mesh wall as placed at the
+        start), depth_m
         (fed walls), work_J (with the energy audit), thermal mode and temperature_K,
         peak_temperature_K, segment_temperatures_K and heat flows (thermal walls)."""
         return self._core.walls()
@@ -130,19 +151,17 @@ class Run:
         """Sets the temperatures of the particles with these ids. The energy ledger books
         the change (its reference takes it, as for an inserted particle), so the run's
         energy balance stays closed."""
-        ids = np.atleast_1d(np.asarray(ids, dtype=np.uint64))
-        values = np.broadcast_to(np.asarray(temperatures_K, dtype=float), ids.shape)
-        self._core.set_temperatures(ids, np.ascontiguousarray(values))
+        ids = _ids(ids)
+        self._core.set_temperatures(ids, _rows(temperatures_K, (ids.size,), "temperatures_K"))
 
     def set_velocities(self, ids, velocities_m_per_s, angular_velocities_rad_per_s=None):
         """Sets the velocities (N, 3), and the spins if given, of the particles with these
         ids; the energy audit books the change of kinetic energy as exchanged."""
-        ids = np.atleast_1d(np.asarray(ids, dtype=np.uint64))
-        v = np.ascontiguousarray(np.broadcast_to(np.asarray(velocities_m_per_s, dtype=float), (ids.size, 3)))
+        ids = _ids(ids)
+        v = _rows(velocities_m_per_s, (ids.size, 3), "velocities_m_per_s")
         w = None
         if angular_velocities_rad_per_s is not None:
-            w = np.ascontiguousarray(np.broadcast_to(np.asarray(angular_velocities_rad_per_s, dtype=float),
-                                                     (ids.size, 3)))
+            w = _rows(angular_velocities_rad_per_s, (ids.size, 3), "angular_velocities_rad_per_s")
         self._core.set_velocities(ids, v, w)
 
     def outputs(self):

@@ -89,6 +89,8 @@ class PausingObserver final : public RunObserver {
   }
   void checkpoint(const RunState& state) override {
     if (state.reason != CheckpointReason::stage_end) return;
+    // After the last stage the run ends: run_stage() returns with its summary written.
+    if (state.position.stage >= state.plan.stages.size()) return;
     std::unique_lock lock(mutex_);
     if (stop_at_stage_end_) {
       stop_at_stage_end_ = false;
@@ -124,6 +126,10 @@ class PausingObserver final : public RunObserver {
     if (done_) return Wake::done;
     if (parked_) return Wake::parked;
     return progress ? Wake::progress : Wake::timeout;
+  }
+  bool done() const {
+    const std::lock_guard lock(mutex_);
+    return done_;
   }
   void wait_done() {
     std::unique_lock lock(mutex_);
@@ -253,16 +259,18 @@ class PythonRun {
   /// checkpoint, summary.json with status "interrupted"), so it can be resumed.
   void close() {
     if (finished_) return;
+    set_stop_cause("Run.close()");
     if (!started_) {
       stop_requested_ = true;  // stops at the first step boundary: a checkpoint at the start
       start_runner();
     }
-    stop_cause_ = "Run.close()";
     stop_and_wait();
   }
 
   /// Runs `steps` more steps (mechanical or static-bed), or to the end.
   std::string advance(std::uint64_t steps, bool stop_at_stage_end, const py::object& progress) {
+    if (stepping_) throw InputError("the run is stepping already: step(), run_stage() and run() cannot be called "
+                                    "from the progress callback");
     if (finished_) return status();
     if (steps == 0 && !stop_at_stage_end) return status();
     observer_.go(steps, stop_at_stage_end);
@@ -275,13 +283,15 @@ class PythonRun {
         py::gil_scoped_release release;
         wake = observer_.wait(std::chrono::milliseconds(100), snapshot);
       }
+      const char* cause = "an exception in the progress callback";
       try {
         if (snapshot && !progress.is_none()) progress(progress_dict(*snapshot));
+        cause = "KeyboardInterrupt";
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      } catch (py::error_already_set&) {
+      } catch (...) {
         // Ctrl-C, or the callback raised: the run stops as the command line's does on
         // Ctrl-C (a checkpoint and summary), then the exception goes on.
-        stop_cause_ = "KeyboardInterrupt";
+        set_stop_cause(cause);
         stop_and_wait();
         stepping_ = false;
         throw;
@@ -354,12 +364,16 @@ class PythonRun {
   }
 
   std::vector<std::string> material_names() const {
+    readable();
     std::vector<std::string> names;
     const MaterialTable& materials = simulation().materials;
     for (std::size_t m = 0; m < materials.size(); ++m) names.push_back(materials[static_cast<MaterialIndex>(m)].name);
     return names;
   }
-  std::vector<std::string> region_names() { return session_->prepared().plan().region_names; }
+  std::vector<std::string> region_names() {
+    readable();
+    return session_->prepared().plan().region_names;
+  }
 
   py::list walls() const {
     readable();
@@ -372,7 +386,15 @@ class PythonRun {
       d["force_N"] = vec3_tuple(wall.force_N);
       d["torque_N_m"] = vec3_tuple(wall.torque_N_m);
       d["displacement_m"] = vec3_tuple(wall.displacement_m);
+      // The pose: the mesh as placed at the start -> now, x = R x0 + t (mesh walls turn and
+      // move by it; an analytic wall's shape is placed in the world and only its displacement moves).
       d["position_m"] = vec3_tuple(wall.pose.translation_m);
+      py::array_t<double> rotation({py::ssize_t{3}, py::ssize_t{3}});
+      auto r = rotation.mutable_unchecked<2>();
+      for (py::ssize_t i = 0; i < 3; ++i)
+        for (py::ssize_t j = 0; j < 3; ++j)
+          r(i, j) = wall.pose.rotation[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+      d["rotation"] = rotation;
       if (wall.fed()) d["depth_m"] = wall.depth_m();
       if (sim.keeps_energy_audit() && b < sim.wall_work_J().size()) d["work_J"] = sim.wall_work_J()[b];
       if (sim.heat_enabled() && b < sim.wall_thermal.size()) {
@@ -447,6 +469,7 @@ class PythonRun {
       d["wall_work_J"] = audit.wall_work_J;
       d["dissipated_J"] = audit.dissipated_J;
       d["exchanged_J"] = audit.exchanged_J;
+      d["spring_source_J"] = audit.spring_source_J;
       d["mechanical_imbalance_J"] = sim.mechanical_imbalance_J();
     }
     return d;
@@ -500,13 +523,37 @@ class PythonRun {
   void writable() {
     readable();
     if (finished_) throw InputError(fmt::format("the run has ended ({}): its state can no longer be changed", status()));
+    // A resumed run restores its checkpoint when its runner starts: start it now (it parks
+    // at its first step boundary), so that a change is made to the state it goes on from.
+    if (!started_ && resume_) {
+      observer_.go(0, false);
+      start_runner();
+      for (std::optional<ProgressSnapshot> ignored;;) {
+        py::gil_scoped_release release;
+        const PausingObserver::Wake wake = observer_.wait(std::chrono::milliseconds(100), ignored);
+        if (wake == PausingObserver::Wake::parked || wake == PausingObserver::Wake::done) break;
+      }
+      if (observer_.done()) {
+        join_runner();
+        throw InputError(fmt::format("the resumed run has ended ({}): its state can no longer be changed", status()));
+      }
+    }
     if (started_ && observer_.inside_stage())
       if (const std::optional<StageInfo> s = observer_.stage();
           s && session_->prepared().plan().stages.at(s->index).freezes_mechanics())
         throw InputError(fmt::format(
-            "stage '{}' is a static-bed stage, which steps a frozen copy of the temperatures: change them between "
+            "stage '{}' is a static-bed stage, which steps a frozen contact network: change the state between "
             "stages (run_stage()) or in a coupled stage",
             s->name));
+  }
+
+  void set_stop_cause(const std::string& cause) {
+    const std::lock_guard lock(cause_mutex_);
+    stop_cause_ = cause;
+  }
+  std::string stop_cause() const {
+    const std::lock_guard lock(cause_mutex_);
+    return stop_cause_;
   }
 
   std::vector<std::size_t> by_id() const {
@@ -540,7 +587,7 @@ class PythonRun {
       omp_set_num_threads(threads_);  // a thread's own OpenMP setting
       ending_ = session_->run(stop_requested_, &observer_);
       try {
-        final_line_ = session_->finish(ending_, stop_cause_);
+        final_line_ = session_->finish(ending_, stop_cause());
       } catch (const std::exception& error) {  // summary.json could not be written
         final_line_ = fmt::format("regodem: the run ended but its summary could not be written: {}", error.what());
       }
@@ -567,6 +614,7 @@ class PythonRun {
   std::unique_ptr<RunSession> session_;
   PausingObserver observer_;
   std::atomic<bool> stop_requested_{false};
+  mutable std::mutex cause_mutex_;  // the cause is set by Python while the runner may be finishing
   std::string stop_cause_ = "a stop request";
   std::thread runner_;
   int threads_ = 1;
@@ -605,10 +653,10 @@ void bind_run(py::module_& m) {
           "resume",
           [](const std::string& directory, int threads, double checkpoint_every_s, bool quiet) {
             app::ResumeOptions options{directory, threads, checkpoint_every_s};
-            ResumeChoice choice = app::choose_resume(options);
-            if (choice.completed) throw InputError(choice.notes.front());
-            if (!quiet)
-              for (const std::string& note : choice.notes) fmt::print(stderr, "regodem: {}\n", note);
+            ResumeChoice choice = app::choose_resume(options, [quiet](const std::string& text) {
+              if (!quiet) fmt::print(stderr, "regodem: {}\n", text);
+            });
+            if (choice.completed) throw InputError(choice.completed_message);
             const RunOptions run = choice.run;
             return std::make_unique<PythonRun>(run, std::nullopt, quiet, std::move(choice));
           },

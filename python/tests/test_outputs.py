@@ -30,3 +30,9 @@ def test_pandas_frames_where_pandas_is_installed(small_cli_run):
 def test_a_folder_without_a_run_is_refused(tmp_path):
     with pytest.raises(FileNotFoundError):
         regodem.read_run(tmp_path)
+
+
+def test_one_csv_reads_alone(small_cli_run):
+    table = regodem.read_table(small_cli_run / "regions" / "low.csv")
+    assert "time" in table and len(table) > 0
+    assert table.as_dict().keys() == set(table.headers)

@@ -66,6 +66,26 @@ def test_a_dict_scenario_reads_as_the_file_does():
     }
     plan = regodem.Scenario.from_dict(data, path="virtual/from_dict.yaml").validate()
     assert plan["name"] == "from_dict" and plan["insertions"][0]["count"] == 20
+    # The same scenario written by hand as YAML: the same plan, line for line.
+    yaml_text = """
+name: from_dict
+domain: {min: [-5 mm, -5 mm, 0], max: [5 mm, 5 mm, 10 mm]}
+materials:
+  grain: {density: 2500 kg/m^3, shear_modulus: 1e7 Pa, poisson_ratio: 0.3}
+interactions:
+  - {materials: [grain, grain], restitution: 0.5, sliding_friction: 0.5}
+walls:
+  - {name: floor, type: plane, point: [0, 0, 0], normal: [0, 0, 1]}
+insertions:
+  - name: grains
+    material: grain
+    region: {type: box, min: [-4 mm, -4 mm, 1 mm], max: [4 mm, 4 mm, 9 mm]}
+    radius: 0.5 mm
+    count: 20
+stages:
+  - {name: settle, duration: 0.01 s}
+"""
+    assert regodem.Scenario.from_text(yaml_text, path="virtual/by_hand.yaml").validate()["lines"] == plan["lines"]
     data["insertions"][0]["radius"] = "0.5 kg"
     with pytest.raises(regodem.InputError) as error:
         regodem.Scenario.from_dict(data, path="virtual/from_dict.yaml").validate()
@@ -75,3 +95,19 @@ def test_a_dict_scenario_reads_as_the_file_does():
 def test_a_missing_file_is_an_input_error():
     with pytest.raises(regodem.InputError):
         regodem.Scenario(os.path.join("no", "such.yaml")).validate()
+
+
+def test_text_in_memory_anchors_its_paths_where_its_path_says(tmp_path):
+    # A scenario that starts from a bed at out/bed, relative to the scenario's own folder.
+    from conftest import SOURCE_DIR, run_cli
+    tiny = os.path.join(SOURCE_DIR, "scenarios", "paper", "tiny")
+    run_cli("run", os.path.join(tiny, "drill-bed.yaml"), "-o", str(tmp_path / "here" / "out" / "bed"))
+    with open(os.path.join(tiny, "drill-heat.yaml")) as f:
+        text = f.read()
+    plan = regodem.Scenario.from_text(text, path=tmp_path / "here" / "drill.yaml").validate()
+    assert plan["particles_at_start"] > 0  # the bed was found beside the path
+    with pytest.raises(regodem.InputError, match="elsewhere.drill.yaml"):
+        regodem.Scenario.from_text(text, path=tmp_path / "elsewhere" / "drill.yaml").validate()
+    copied = regodem.Scenario(SMALL).copy().set("stages.fill.duration", "0.1 s")
+    assert copied.validate()["stages"][0]["duration_s"] == pytest.approx(0.1)
+    assert regodem.Scenario(SMALL).validate()["stages"][0]["duration_s"] == pytest.approx(0.3)

@@ -309,6 +309,7 @@ void Simulation::set_particle_velocity(std::size_t i, const Vec3& velocity_m_per
   particles.velocity_m_per_s[i] = velocity_m_per_s;
   if (particles.inv_inertia[i] > 0.0) particles.angular_velocity_rad_per_s[i] = angular_velocity_rad_per_s;
   audit_.exchanged_J += particle_mechanical_energy_J(i) - before_J;
+  forces_current_ = false;  // the damping the next half-kick uses follows the new velocity
 }
 
 double Simulation::elastic_energy_J() const { return contact_elastic_energy_J_ + bond_elastic_energy_J(); }

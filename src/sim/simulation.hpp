@@ -112,9 +112,9 @@ class Simulation {
   void remove_particles(const std::vector<char>& remove_flag);
   /// Changes made from outside a run between steps (the Python module), which keep the
   /// books closed. A particle's velocity and spin: the audit books the change of its
-  /// kinetic energy as exchanged, as for an added particle; the force of the step just
-  /// taken (its damping) was found with the old velocity. Throws InputError for a
-  /// particle held fixed or a non-finite value.
+  /// kinetic energy as exchanged, as for an added particle, and the forces are found
+  /// again (their damping) before the next step. A particle whose rotation is locked
+  /// keeps its spin. Throws InputError for a particle held fixed or a non-finite value.
   void set_particle_velocity(std::size_t i, const Vec3& velocity_m_per_s, const Vec3& angular_velocity_rad_per_s);
   /// A particle's temperature (heat on): the ledger's reference takes the change of its
   /// thermal energy, as it takes an inserted particle's; its k follows, and its peak if

@@ -614,7 +614,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       double rolling_wall_power_i = 0.0;
       WallShare* __restrict wall_share = block_wall + (i / block_size) * n_bodies;
       NodeHeat* __restrict node_share = block_node + (i / block_size) * n_nodes;
-      if (shares_wall_losses) wall_loss_share[i] = WallLossShare{};
+      if (shares_wall_losses) wall_loss_share[i].clear();
       double heat_i = 0.0, temperature_i = 0.0, conductivity_i = 0.0;
       if constexpr (Heat) {
         temperature_i = temperature[i];

@@ -322,10 +322,17 @@ class Simulation {
     LossyActions actions[2];
     double rolling_wall_power_W[2] = {0.0, 0.0};
     double own_spin_resistance_N_m[2] = {0.0, 0.0};  // sum of (1 - s) mu_r F_n R_i
+    /// Forgets the last pass: a slot's sums are zeroed when a node first takes it, so a
+    /// particle without wall contacts costs two stores a pass.
+    void clear() { node[0] = node[1] = no_node; }
     void add(std::uint32_t at_node, double wall_share, const LossyActions& a, double rolling_power_W,
              double own_spin_N_m) {
       const int slot = node[0] == no_node || node[0] == at_node ? 0 : 1;
-      node[slot] = node[slot] == no_node ? at_node : node[slot];
+      if (node[slot] == no_node) {
+        node[slot] = at_node;
+        actions[slot] = LossyActions{};
+        rolling_wall_power_W[slot] = own_spin_resistance_N_m[slot] = 0.0;
+      }
       actions[slot] += LossyActions{a.rolling_torque_N_m * wall_share, a.lossy_force_N * wall_share,
                                     a.lossy_torque_N_m * wall_share};
       rolling_wall_power_W[slot] += wall_share * rolling_power_W;

@@ -322,6 +322,8 @@ void RunSession::begin(std::FILE* progress) {
     abandon();
     throw;
   }
+  if (progress)
+    for (const std::string& warning : prepared_->warnings()) fmt::print(progress, "regodem: warning: {}\n", warning);
   if (!resume_) {
     try {
       write_reproduction_files(directory_, options_, scenario_text_);

@@ -38,6 +38,7 @@ py::dict plan_of(const ScenarioSpec& spec, const PreparedRun& prepared) {
   plan["name"] = spec.name;
   plan["content_hash"] = spec.content_hash;
   plan["lines"] = prepared.describe();
+  plan["warnings"] = prepared.warnings();
   const Simulation& sim = prepared.simulation();
   plan["time_step_s"] = prepared.time_step_s();
   plan["heat"] = sim.heat_enabled();

@@ -17,6 +17,7 @@ def test_a_file_validates_into_its_plan():
     assert plan["insertions"] == [{"name": "fill", "count": 40, "stage": "fill"}]
     assert plan["heat"] and plan["time_step_s"] > 0.0
     assert any("time step" in line for line in plan["lines"])
+    assert plan["warnings"] == []  # its press moves slowly
 
 
 def test_values_set_as_the_command_line_sets_them():
@@ -106,6 +107,12 @@ def test_text_in_memory_anchors_its_paths_where_its_path_says(tmp_path):
         text = f.read()
     plan = regodem.Scenario.from_text(text, path=tmp_path / "here" / "drill.yaml").validate()
     assert plan["particles_at_start"] > 0  # the bed was found beside the path
+    # The tiny drill's flutes strike its 1 mm grains faster than 0.2 T_R resolves (9.2
+    # steps); at a tenth of the Rayleigh time they get twice as many and no warning.
+    assert len(plan["warnings"]) == 1 and "wall 'drill' strikes grains" in plan["warnings"][0]
+    assert "warning: " + plan["warnings"][0] in plan["lines"]
+    finer = regodem.Scenario.from_text(text, path=tmp_path / "here" / "drill.yaml").set("rayleigh_fraction", 0.1)
+    assert finer.validate()["warnings"] == []
     with pytest.raises(regodem.InputError, match="elsewhere.drill.yaml"):
         regodem.Scenario.from_text(text, path=tmp_path / "elsewhere" / "drill.yaml").validate()
     copied = regodem.Scenario(SMALL).copy().set("stages.fill.duration", "0.1 s")

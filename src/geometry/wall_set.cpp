@@ -124,9 +124,15 @@ std::vector<double> WallSet::surface_steps_m(double time_s, double dt_s) {
   for (std::uint32_t b = 0; b < bodies.size(); ++b) {
     const WallMotion& motion = bodies[b].motion;
     if (!motion.active_at(time_s) || !motion.moves()) continue;
-    steps[b] = dt_s * (norm(motion.velocity_m_per_s) + norm(motion.angular_velocity_rad_per_s) * spin_reach_m(b));
+    steps[b] = dt_s * fastest_surface_speed_m_per_s(b);
   }
   return steps;
+}
+
+double WallSet::fastest_surface_speed_m_per_s(std::uint32_t body) {
+  const WallMotion& motion = bodies[body].motion;
+  if (!motion.moves()) return 0.0;
+  return norm(motion.velocity_m_per_s) + norm(motion.angular_velocity_rad_per_s) * spin_reach_m(body);
 }
 
 double WallSet::max_displacement_since_build_m() const {

@@ -72,6 +72,9 @@ class WallSet {
   /// Per body: the largest distance a point of its surface moves in one step of dt_s
   /// from time_s (feed plus spin times its meshes' reach from the axis; 0 at rest).
   std::vector<double> surface_steps_m(double time_s, double dt_s);
+  /// The speed of the body's fastest surface point under its motion as given (feed plus
+  /// spin times its meshes' reach from the axis), whether or not the motion is active.
+  double fastest_surface_speed_m_per_s(std::uint32_t body);
   /// Largest wall translation since the neighbour list was built.
   double max_displacement_since_build_m() const;
   void mark_neighbor_build();

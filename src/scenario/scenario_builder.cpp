@@ -15,6 +15,7 @@
 #include "io/checkpoint_file.hpp"
 #include "io/particle_csv_reader.hpp"
 #include "scenario/conduction_pairs.hpp"
+#include "scenario/wall_speed_check.hpp"
 #include "sim/simulation.hpp"
 #include "sim/stage_plan.hpp"
 #include "sim/stage_runner.hpp"
@@ -32,6 +33,7 @@ struct PreparedRun::Impl {
   StagePlan plan;
   double rayleigh_time_s = 0.0;
   std::vector<std::string> description;
+  std::vector<std::string> warnings;
 };
 
 namespace {
@@ -702,8 +704,11 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   double min_radius = std::numeric_limits<double>::infinity();
   double min_rayleigh = std::numeric_limits<double>::infinity();
   std::string min_rayleigh_particle;  // which particle sets the step, for a plan that cannot be run
-  const auto consider_particle = [&](double r, const Material& m) {
+  std::vector<double> smallest_radius_of_material(materials.size(), std::numeric_limits<double>::infinity());
+  const auto consider_particle = [&](double r, MaterialIndex material) {
+    const Material& m = materials[material];
     min_radius = std::min(min_radius, r);
+    smallest_radius_of_material[material] = std::min(smallest_radius_of_material[material], r);
     const double rayleigh = rayleigh_time_s(r, m.density_kg_per_m3, m.shear_modulus_Pa, m.poisson_ratio);
     if (!(rayleigh >= min_rayleigh))
       min_rayleigh_particle = fmt::format("radius {:.4g} m, material '{}': shear modulus {:.4g} Pa, density {:.4g} "
@@ -717,7 +722,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     particle_material[ins.material] = 1;
     planned_particles += static_cast<double>(ins.target_count);
     const Material& m = materials[ins.material];
-    auto consider = [&](double r) { consider_particle(r, m); };
+    auto consider = [&](double r) { consider_particle(r, ins.material); };
     for (const SizeClass& c : ins.sizes) consider(c.radius_m);
     for (const NewParticle& p : ins.from_file) consider(p.radius_m);
     std::string temperature;
@@ -767,7 +772,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     for (std::size_t i = 0; i < saved.particles.size(); ++i) {
       const MaterialIndex mi = initial_materials[saved.particles.material[i]];
       particle_material[mi] = 1;
-      consider_particle(saved.particles.radius_m[i], materials[mi]);
+      consider_particle(saved.particles.radius_m[i], mi);
     }
     planned_particles += static_cast<double>(saved.particles.size());
     lines.push_back(fmt::format("initial state: {} particles from checkpoint '{}' (taken at t = {:.6g} s), with "
@@ -925,6 +930,13 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   lines.insert(lines.begin(), fmt::format("time step {:.4g} s = {:.3g} x the Rayleigh time {:.4g} s of the smallest "
                                           "particle (radius {:.4g} m)",
                                           dt, dt / min_rayleigh, min_rayleigh, min_radius));
+  {
+    WallSpeedReport speeds = wall_speed_report(walls, materials, smallest_radius_of_material, dt,
+                                               spec.time_step_s > 0.0 ? 0.0 : spec.rayleigh_fraction);
+    lines.insert(lines.end(), speeds.lines.begin(), speeds.lines.end());
+    for (const std::string& w : speeds.warnings) lines.push_back("warning: " + w);
+    impl.warnings = std::move(speeds.warnings);
+  }
 
   SimulationSettings settings;
   settings.domain = {spec.domain.min_m, spec.domain.max_m};
@@ -1071,6 +1083,7 @@ RunOutcome PreparedRun::resume(const Checkpoint& checkpoint, RunObserver& observ
 }
 
 std::vector<std::string> PreparedRun::describe() const { return impl_->description; }
+const std::vector<std::string>& PreparedRun::warnings() const { return impl_->warnings; }
 const Simulation& PreparedRun::simulation() const { return *impl_->simulation; }
 const StagePlan& PreparedRun::plan() const { return impl_->plan; }
 Simulation& PreparedRun::simulation() { return *impl_->simulation; }

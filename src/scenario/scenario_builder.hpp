@@ -34,6 +34,10 @@ class PreparedRun {
   /// Human-readable lines describing the plan: time step and Rayleigh time, walls,
   /// insertions, stages. `regodem validate` prints these.
   std::vector<std::string> describe() const;
+  /// What may make the results depend on the step without making the run fail (a wall
+  /// that strikes grains faster than the step resolves); also among describe()'s lines,
+  /// after "warning: ". `regodem run` prints them.
+  const std::vector<std::string>& warnings() const;
 
   const Simulation& simulation() const;
   /// Stages and insertions as the engine will run them.

@@ -13,4 +13,17 @@ inline double rayleigh_time_s(double radius_m, double density_kg_per_m3, double 
          (0.1631 * poisson_ratio + 0.8766);
 }
 
+/// The duration of an elastic Hertz impact at normal speed v (Johnson, Contact Mechanics,
+/// 1985, ch. 11): t_c = 2.87 (m*^2 / (R* E*^2 v))^(1/5), with the effective mass,
+/// radius and modulus of the pair. LIGGGHTS' check/timestep/gran calls it the Hertz time
+/// and warns when the step exceeds a fraction of it (0.1 in its example): below ~10
+/// steps a contact's force history, and so its damping loss, is resolved coarsely.
+inline double hertz_contact_time_s(double effective_mass_kg, double effective_radius_m,
+                                   double effective_youngs_modulus_Pa, double impact_speed_m_per_s) {
+  return 2.87 * std::pow(effective_mass_kg * effective_mass_kg /
+                             (effective_radius_m * effective_youngs_modulus_Pa * effective_youngs_modulus_Pa *
+                              impact_speed_m_per_s),
+                         0.2);
+}
+
 }  // namespace regodem

@@ -190,6 +190,12 @@ RunSummary make_summary(const RunEnding& ending, const ScenarioSpec& spec, const
     }
     summary.energy_audit = a;
   }
+  if (const ImpactRecord& impact = sim.fastest_impact(); impact.seen())
+    summary.fastest_impact =
+        ImpactSummary{impact.approach_speed_m_per_s, impact.contact_time_s(),
+                      impact.contact_time_s() / sim.settings().time_step_s,
+                      impact.wall_body < 0 ? std::string() : sim.walls.bodies[static_cast<std::size_t>(impact.wall_body)].name,
+                      impact.time_s};
   if (sim.bonds_configured()) {
     const BondCounts bonds = sim.bond_counts();  // the simulation's, whether the run ended or threw
     summary.bonds = BondSummary{bonds.formed, bonds.intact, bonds.broken_in_tension, bonds.broken_in_shear};

@@ -45,6 +45,7 @@ struct ContactLaw {
     ContactForces out;
     out.elastic_normal_force_N = normal.elastic_force_N;
     out.contact_radius_m = normal.contact_radius_m;
+    out.approach_speed_m_per_s = approach_speed;
     out.sliding_power_W = sliding ? std::abs(dot(tangential, tangential_velocity)) : 0.0;
     // Losses (docs/physics.md, "Energy audit"). The normal damper's c v_n^2. Tangentially,
     // the work the force takes from the relative motion, -F_t . v_t: while sliding all of it

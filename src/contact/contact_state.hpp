@@ -41,6 +41,7 @@ struct ContactForces {
   double elastic_normal_force_N = 0.0;  // F_n^e, also what conduction uses (DESIGN.md Eq. 1)
   double contact_radius_m = 0.0;        // a = sqrt(R* delta_n) for Hertz, the conduction laws' a
   double sliding_power_W = 0.0;         // |F_t . v_t| while sliding (Coulomb-limited), else 0
+  double approach_speed_m_per_s = 0.0;  // v . n, > 0 while closing (sim/impact_record.hpp)
   // The contact's losses but rolling's (docs/physics.md, "Energy audit"): normal damping
   // (F_n - F_n^e) v_n and what the tangential force takes less what its spring keeps.
   // Rolling torques are capped to stop a spin within a step, so their loss is found per

@@ -176,6 +176,14 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
                             {"relative_imbalance", number_or_null(a.relative_imbalance)},
                             {"wall_work_by_wall_J", by_wall}};
   }
+  if (summary.fastest_impact) {
+    const ImpactSummary& i = *summary.fastest_impact;
+    json["fastest_impact"] = {{"approach_speed_m_per_s", number_or_null(i.approach_speed_m_per_s)},
+                              {"contact_time_s", number_or_null(i.contact_time_s)},
+                              {"contact_steps", number_or_null(i.contact_steps)},
+                              {"wall", i.wall.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(i.wall)},
+                              {"time_s", number_or_null(i.time_s)}};
+  }
   if (summary.bonds)
     json["bonds"] = {{"formed", summary.bonds->formed},
                      {"intact", summary.bonds->intact},

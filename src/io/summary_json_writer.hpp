@@ -52,6 +52,15 @@ struct EnergyAuditSummary {
   std::vector<std::pair<std::string, double>> wall_work_by_wall_J;  // moving walls
 };
 
+/// The run's fastest impact against its step (sim/impact_record.hpp).
+struct ImpactSummary {
+  double approach_speed_m_per_s = 0.0;
+  double contact_time_s = 0.0;  // its Hertz contact at that speed
+  double contact_steps = 0.0;   // the same over the step
+  std::string wall;             // the wall it struck; empty: two particles
+  double time_s = 0.0;
+};
+
 /// A lumped wall at the end (a drill as a thermal body, docs/drilling-heat.md): its
 /// temperatures and where its heat went, cumulative.
 struct LumpedWallSummary {
@@ -98,6 +107,7 @@ struct RunSummary {
   std::string compiler;
   std::string started_at_utc;  // ISO 8601
   std::optional<EnergyAuditSummary> energy_audit;  // when the run kept the books
+  std::optional<ImpactSummary> fastest_impact;     // when any contact closed
   std::string scenario_name;
   std::string scenario_file;        // as given on the command line
   std::string scenario_hash;

@@ -52,14 +52,14 @@ WallSpeedReport wall_speed_report(WallSet& walls, const MaterialTable& materials
                                        "{:.1f} steps",
                                        name, speed, per_step_m, per_step_m / smallest_of_all_m, grain, shortest_s,
                                        steps));
-    if (steps >= kMinimumStepsPerWallImpact) continue;
-    const double step_needed_s = shortest_s / kMinimumStepsPerWallImpact;
+    if (steps >= kMinimumStepsPerImpact) continue;
+    const double step_needed_s = shortest_s / kMinimumStepsPerImpact;
     report.warnings.push_back(fmt::format(
         "wall '{}' strikes grains faster than the step resolves: {} struck at its fastest point's {:.3g} m/s is in "
         "contact {:.1f} steps (Hertz), fewer than {:.0f}. The losses of such contacts (and their heat with "
         "`dissipation_heating`) then depend on the step: use a step of at most {:.3g} s{}, or check the result "
         "against a smaller one",
-        name, grain, speed, steps, kMinimumStepsPerWallImpact, step_needed_s,
+        name, grain, speed, steps, kMinimumStepsPerImpact, step_needed_s,
         rayleigh_fraction > 0.0
             ? fmt::format(" (rayleigh_fraction {:.2g})", rayleigh_fraction * step_needed_s / time_step_s)
             : std::string()));

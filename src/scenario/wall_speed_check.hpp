@@ -10,12 +10,9 @@
 
 #include "core/material.hpp"
 #include "geometry/wall_set.hpp"
+#include "sim/impact_record.hpp"
 
 namespace regodem {
-
-/// Fewer steps than this in a struck grain's contact raises a warning: LIGGGHTS'
-/// check/timestep/gran example warns above 0.1 of the Hertz time.
-inline constexpr double kMinimumStepsPerWallImpact = 10.0;
 
 /// The worst-resolved impact of one moving wall body.
 struct WallImpact {
@@ -31,7 +28,7 @@ struct WallSpeedReport {
   std::vector<std::string> warnings;  // one per wall whose impacts get too few steps
 };
 
-/// For each moving wall body: its fastest surface point's speed, how far it moves in a
+/// For each moving wall body (a warning under kMinimumStepsPerImpact steps): its fastest surface point's speed, how far it moves in a
 /// step against the smallest radius, and the shortest Hertz contact of a grain at rest
 /// it strikes at that speed (the smallest grain of each particle material against each
 /// material of the body, the mechanics' E*), in steps. smallest_radius_m[material] is

@@ -480,12 +480,16 @@ void Simulation::compute_forces(double slip_time_s) {
   if (!particle_lossy_.empty()) book_end_of_step_losses();
   // The losses and stored energy of contacts and bonds, block by block in order.
   generated_heat_W_ = dissipated_power_W_ = contact_elastic_energy_J_ = spring_source_W_ = 0.0;
+  ImpactRecord impact;
   for (const BlockEnergy& e : block_energy_) {
     generated_heat_W_ += e.generated_heat_W;
     dissipated_power_W_ += e.dissipated_W;
     contact_elastic_energy_J_ += e.elastic_J;
     spring_source_W_ += e.spring_source_W;
+    impact.merge(e.impact);
   }
+  impact.time_s = time_s_;
+  fastest_impact_.merge(impact);
 }
 
 template <bool Heat, bool Audit>
@@ -611,6 +615,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       Vec3 force_i = gravity * mass[i], torque_i;
       double own_spin_i = 0.0, generated_i = 0.0, dissipated_i = 0.0, elastic_i = 0.0, spring_source_i = 0.0;
       LossyActions lossy_i;
+      ImpactRecord impact_i;
       double rolling_wall_power_i = 0.0;
       WallShare* __restrict wall_share = block_wall + (i / block_size) * n_bodies;
       NodeHeat* __restrict node_share = block_node + (i / block_size) * n_nodes;
@@ -662,7 +667,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
         const MaterialIndex mat_j = material[j];
-        const ContactForces f = HertzMindlinLaw::evaluate<Audit>(table(mat_i, mat_j), c, history[k]);
+        const ContactPairParameters& law = table(mat_i, mat_j);
+        const ContactForces f = HertzMindlinLaw::evaluate<Audit>(law, c, history[k]);
+        if (f.approach_speed_m_per_s > 0.0)
+          impact_i.consider(hertz_impact_key(inv_mi + inv_mass[j], c.effective_radius_m, law.effective_youngs_modulus_Pa,
+                                             f.approach_speed_m_per_s),
+                            f.approach_speed_m_per_s, -1);
         const Vec3 lever = cross(normal, f.tangential_force_on_i_N);
         force_i += f.force_on_i_N;
         torque_i += lever * arm_i + f.rolling_torque_on_i_N_m;
@@ -723,7 +733,11 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         c.inv_inertia_i = inv_ii;
         c.time_step_s = dt;
         c.slip_time_s = slip_time_s;
-        const ContactForces f = HertzMindlinLaw::evaluate<Audit>(table(mat_i, wall_material), c, wall_spring);
+        const ContactPairParameters& law = table(mat_i, wall_material);
+        const ContactForces f = HertzMindlinLaw::evaluate<Audit>(law, c, wall_spring);
+        if (f.approach_speed_m_per_s > 0.0)
+          impact_i.consider(hertz_impact_key(inv_mi, ri, law.effective_youngs_modulus_Pa, f.approach_speed_m_per_s),
+                            f.approach_speed_m_per_s, static_cast<std::int32_t>(body));
         if constexpr (Heat) {
           const WallContactHeat& wh = wall_heat[node];
           if (wh.conducts) {
@@ -834,6 +848,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       energy.dissipated_W += dissipated_i;
       energy.elastic_J += elastic_i;
       energy.spring_source_W += spring_source_i;
+      energy.impact.merge(impact_i);
       if constexpr (audit) {
         lossy[i] = lossy_i;
         rolling_wall_power[i] = rolling_wall_power_i;

@@ -13,6 +13,7 @@
 #include "core/particle_store.hpp"
 #include "geometry/wall_set.hpp"
 #include "sim/energy_audit.hpp"
+#include "sim/impact_record.hpp"
 #include "thermal/conduction_parameters.hpp"
 #include "thermal/heat_partition.hpp"
 #include "thermal/thermal_ledger.hpp"
@@ -156,6 +157,8 @@ class Simulation {
   bool keeps_energy_audit() const { return settings_.energy_audit || (heat_enabled() && settings_.heat.dissipation_heating); }
   /// The mechanical energy books (sim/energy_audit.hpp), kept whether heat is on or not.
   const EnergyAudit& energy_audit() const { return audit_; }
+  /// The fastest impact of any contact so far, against the step (sim/impact_record.hpp).
+  const ImpactRecord& fastest_impact() const { return fastest_impact_; }
   /// Elastic energy stored now: the contacts' springs (at the last contact pass) and the bonds.
   double elastic_energy_J() const;
   /// Kinetic, potential and elastic energy now: what the audit balances.
@@ -296,6 +299,7 @@ class Simulation {
   std::vector<NodeHeat> block_node_heat_;  // blocks x wall nodes
   struct BlockEnergy {  // per block of owners, summed in order
     double generated_heat_W = 0.0, dissipated_W = 0.0, elastic_J = 0.0, spring_source_W = 0.0;
+    ImpactRecord impact;  // the block's fastest impact this pass
   };
   std::vector<BlockEnergy> block_energy_;
   // With the audit, per particle: the rolling torques on it (both models), the lossy forces
@@ -360,6 +364,7 @@ class Simulation {
   std::vector<double> wall_power_W_;           // per wall body: its power into the particles
   double generated_heat_W_ = 0.0;              // heat generated at all contacts and bonds
   double dissipated_power_W_ = 0.0;            // every loss, heat on or off
+  ImpactRecord fastest_impact_;
   double contact_elastic_energy_J_ = 0.0;      // stored in the contacts' springs
   double spring_source_W_ = 0.0;            // the tangential springs' own source (EnergyAudit)
   std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0

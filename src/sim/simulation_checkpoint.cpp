@@ -198,6 +198,7 @@ constexpr std::uint32_t kNeighborsVersion = 2;
 /// segment temperatures, and every wall node's contact heat (issue 21); a version 1
 /// section restores walls of one node each.
 constexpr std::uint32_t kWallHeatVersion = 2;
+constexpr std::uint32_t kEnergyAuditVersion = 2;  // 2: the fastest impact
 
 /// skin_m, bodies: a version 1 list was built with every half at skin/2.
 void load_neighbors(ByteReader& r, std::uint32_t version, double skin_m, std::size_t bodies, NeighborList& nl,
@@ -371,7 +372,11 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
     w.put_vector(wall_power_W_);
     w.put(static_cast<std::uint8_t>(audit_awaits_contact_elastic_));
     w.put(static_cast<std::uint8_t>(keeps_energy_audit()));
-    checkpoint.add(kEnergyAudit, 1, std::move(w));
+    w.put(fastest_impact_.key);  // version 2
+    w.put(fastest_impact_.approach_speed_m_per_s);
+    w.put(fastest_impact_.wall_body);
+    w.put(fastest_impact_.time_s);
+    checkpoint.add(kEnergyAudit, kEnergyAuditVersion, std::move(w));
   }
 }
 
@@ -505,7 +510,7 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
   }
   bool books_kept = false;
   if (checkpoint.has(kEnergyAudit)) {
-    ByteReader r = checkpoint.reader(kEnergyAudit);
+    ByteReader r = checkpoint.reader(kEnergyAudit, kEnergyAuditVersion);
     r.get(audit_.wall_work_J);
     r.get(audit_.dissipated_J);
     r.get(audit_.exchanged_J);
@@ -517,6 +522,14 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     r.get_vector(wall_power_W_);
     audit_awaits_contact_elastic_ = r.get<std::uint8_t>() != 0;
     books_kept = r.at_end() || r.get<std::uint8_t>() != 0;  // d5f098e wrote no flag: its books were kept
+    if (section_version(checkpoint, kEnergyAudit) >= 2) {  // version 1 (before 2026-12-02) saw no impacts
+      r.get(fastest_impact_.key);
+      r.get(fastest_impact_.approach_speed_m_per_s);
+      r.get(fastest_impact_.wall_body);
+      r.get(fastest_impact_.time_s);
+      if (fastest_impact_.wall_body >= static_cast<std::int32_t>(walls.bodies.size()))
+        r.fail("holds an impact on a wall that does not exist");
+    }
     if (audit_.wall_work_by_body_J.size() != walls.bodies.size() || wall_power_W_.size() != walls.bodies.size())
       r.fail("holds another number of walls");
   }

@@ -100,6 +100,25 @@ std::string measurement_not_reached(const Simulation& sim, const StagePlan& plan
       measured_value(m, sim, target.quantity));
 }
 
+/// Whether the run's fastest impact so far had at least kMinimumStepsPerImpact steps.
+bool impacts_resolved(const Simulation& sim) {
+  const ImpactRecord& impact = sim.fastest_impact();
+  return !impact.seen() || impact.contact_time_s() >= kMinimumStepsPerImpact * sim.settings().time_step_s;
+}
+
+/// Said once a run, when its fastest impact first gets fewer steps than that.
+std::string unresolved_impact_notice(const Simulation& sim, const std::string& stage) {
+  const ImpactRecord& impact = sim.fastest_impact();
+  return fmt::format(
+      "stage '{}': at t = {:.4g} s a particle closed on {} at {:.3g} m/s, a Hertz contact of {:.1f} steps, fewer than "
+      "{:.0f}: the losses of such contacts (and their heat) depend on the step (docs/physics.md, \"Time step and "
+      "integration\"); the run's fastest impact is in summary.json",
+      stage, impact.time_s,
+      impact.wall_body < 0 ? std::string("another")
+                           : fmt::format("wall '{}'", sim.walls.bodies[static_cast<std::size_t>(impact.wall_body)].name),
+      impact.approach_speed_m_per_s, impact.contact_time_s() / sim.settings().time_step_s, kMinimumStepsPerImpact);
+}
+
 bool reached_depth(const Simulation& sim, const Stage& stage) {
   return sim.walls.bodies[static_cast<std::size_t>(stage.depth_body)].depth_m() >= stage.depth_m * (1.0 - 1e-12);
 }
@@ -126,6 +145,8 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
       {"wall_contacts", "-"},
       {"coordination_number", "-"},
       {"max_overlap_fraction", "-"},
+      {"fastest_impact_speed", "m/s"},     // the run's so far (sim/impact_record.hpp)
+      {"shortest_impact_steps", "-"},      // its Hertz contact time over the step
   });
   for (const WallBody& wall : sim.walls.bodies) {
     for (const char* axis : {"x", "y", "z"}) columns.push_back({wall.name + ".force_" + axis, "N"});
@@ -180,6 +201,7 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
   const auto& stats = sim.contact_statistics();
   const double n = static_cast<double>(sim.particles.size());
   const TimeScale scale{sim.settings().heat.time_scale_factor};
+  const ImpactRecord& impact = sim.fastest_impact();
   std::vector<double> row = {
       sim.time_s(),
       scale.real_time_s(sim.time_s()),
@@ -198,6 +220,8 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
       static_cast<double>(stats.wall_contacts),
       n > 0 ? (2.0 * static_cast<double>(stats.particle_contacts) + static_cast<double>(stats.wall_contacts)) / n : 0.0,
       sim.max_overlap_fraction(),
+      impact.seen() ? impact.approach_speed_m_per_s : std::numeric_limits<double>::quiet_NaN(),
+      impact.seen() ? impact.contact_time_s() / sim.settings().time_step_s : std::numeric_limits<double>::quiet_NaN(),
   });
   for (const WallBody& wall : sim.walls.bodies) {
     row.insert(row.end(), {wall.force_N.x, wall.force_N.y, wall.force_N.z});
@@ -507,8 +531,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           frozen->advance(std::min(step_s, remaining_s));
         } else {
           observer.before_step(sim);
+          const bool resolved_before = impacts_resolved(sim);
           sim.step();
           if (sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
+          if (resolved_before && !impacts_resolved(sim)) observer.notice(unresolved_impact_notice(sim, stage.name));
         }
         ++done;
         snapshots.count_step();

@@ -77,6 +77,10 @@ void expect_identical(const Simulation& a, const Simulation& b) {
   EXPECT_EQ(a.energy_audit().spring_source_J, b.energy_audit().spring_source_J);
   EXPECT_EQ(a.energy_audit().wall_work_J, b.energy_audit().wall_work_J);
   EXPECT_EQ(a.elastic_energy_J(), b.elastic_energy_J());
+  EXPECT_EQ(a.fastest_impact().key, b.fastest_impact().key);
+  EXPECT_EQ(a.fastest_impact().approach_speed_m_per_s, b.fastest_impact().approach_speed_m_per_s);
+  EXPECT_EQ(a.fastest_impact().wall_body, b.fastest_impact().wall_body);
+  EXPECT_EQ(a.fastest_impact().time_s, b.fastest_impact().time_s);
 }
 
 void check_restart(int threads, const Phase& phase) {

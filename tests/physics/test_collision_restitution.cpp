@@ -21,6 +21,7 @@ constexpr double kSpeed = 0.1;
 struct CollisionResult {
   double speed_ratio;
   double duration_s;
+  ImpactRecord fastest_impact;
 };
 
 /// Two equal spheres approach head-on at +-kSpeed/2; returns |v_rel after| / |v_rel before|.
@@ -43,7 +44,7 @@ CollisionResult sphere_sphere(double e, double rayleigh_fraction) {
   const auto& v = sim.particles.velocity_m_per_s;
   // Particle order may change with spatial sorting: use the x components' difference.
   const double relative = std::abs(v[0].x - v[1].x);
-  return {relative / kSpeed, contact_time};
+  return {relative / kSpeed, contact_time, sim.fastest_impact()};
 }
 
 CollisionResult sphere_plane(double e, double rayleigh_fraction) {
@@ -62,7 +63,7 @@ CollisionResult sphere_plane(double e, double rayleigh_fraction) {
     if (touching) contact_time += dt, touched = true;
     if (touched && !touching) break;
   }
-  return {sim.particles.velocity_m_per_s[0].z / kSpeed, contact_time};
+  return {sim.particles.velocity_m_per_s[0].z / kSpeed, contact_time, sim.fastest_impact()};
 }
 
 /// Hertz contact time of an elastic impact: t_c = 2.9432 delta_max / v with
@@ -112,6 +113,23 @@ TEST(Restitution, ContactDurationMatchesHertz) {
   // walls' impacts, against the same collision.
   const double engine_s = hertz_contact_time_s(mass, kRadius, e_star, kSpeed);
   EXPECT_NEAR(wall_s, engine_s, 0.02 * engine_s);
+}
+
+// The run's fastest impact (sim/impact_record.hpp) is the collision's own: the speed
+// the bodies met at (no gravity: exactly kSpeed until the first contact force, so to
+// 1e-12), the pair or the wall, and a Hertz time that is the contact's measured
+// duration, to the 2 % of the test above.
+TEST(Restitution, TheRunsFastestImpactIsTheCollision) {
+  const CollisionResult pair = sphere_sphere(0.99, 0.02);
+  ASSERT_TRUE(pair.fastest_impact.seen());
+  EXPECT_EQ(pair.fastest_impact.wall_body, -1);
+  EXPECT_NEAR(pair.fastest_impact.approach_speed_m_per_s, kSpeed, 1e-12 * kSpeed);
+  EXPECT_NEAR(pair.fastest_impact.contact_time_s(), pair.duration_s, 0.02 * pair.duration_s);
+  const CollisionResult wall = sphere_plane(0.99, 0.02);
+  ASSERT_TRUE(wall.fastest_impact.seen());
+  EXPECT_EQ(wall.fastest_impact.wall_body, 0);
+  EXPECT_NEAR(wall.fastest_impact.approach_speed_m_per_s, kSpeed, 1e-12 * kSpeed);
+  EXPECT_NEAR(wall.fastest_impact.contact_time_s(), wall.duration_s, 0.02 * wall.duration_s);
 }
 
 // ---- Two materials (docs/physics.md, "Mixing") ----
@@ -171,7 +189,7 @@ CollisionResult soft_sphere_on_stiff_plane(double e, double rayleigh_fraction) {
   Simulation sim(two_materials(soft, stiff, soft_stiff_pair(e)), walls, settings_for(kRadius, dt));
   sim.add_particle(sphere({0, 0, kRadius * 1.01}, {0, 0, -kSpeed}, kRadius, soft.density));
   const double duration = time_in_contact(sim, true);
-  return {sim.particles.velocity_m_per_s[0].z / kSpeed, duration};
+  return {sim.particles.velocity_m_per_s[0].z / kSpeed, duration, sim.fastest_impact()};
 }
 
 /// The soft sphere meets the smaller stiff one head-on, relative speed kSpeed, zero
@@ -191,7 +209,7 @@ CollisionResult soft_sphere_on_stiff_sphere(double e, double rayleigh_fraction) 
   sim.add_particle(hard);
   const double duration = time_in_contact(sim, false);
   const auto& v = sim.particles.velocity_m_per_s;  // order-free: the x components' difference
-  return {std::abs(v[0].x - v[1].x) / kSpeed, duration};
+  return {std::abs(v[0].x - v[1].x) / kSpeed, duration, sim.fastest_impact()};
 }
 
 class MixedRestitutionCases : public ::testing::TestWithParam<double> {};

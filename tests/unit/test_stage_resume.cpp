@@ -77,7 +77,17 @@ void check_resume_inside(int stage, double stop_time_s) {
     if (row[0] < checkpoint_time) joined.push_back(row);
   joined.insert(joined.end(), second.rows.begin(), second.rows.end());
   ASSERT_EQ(joined.size(), whole.rows.size());
-  for (std::size_t k = 0; k < joined.size(); ++k) ASSERT_EQ(joined[k], whole.rows[k]) << "sample " << k;
+  // Bit for bit, a column that is nan (no impact yet) in both counting as equal.
+  const auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t c = 0; c < a.size(); ++c)
+      if (!(a[c] == b[c] || (std::isnan(a[c]) && std::isnan(b[c])))) return false;
+    return true;
+  };
+  for (std::size_t k = 0; k < joined.size(); ++k)
+    ASSERT_TRUE(same(joined[k], whole.rows[k])) << "sample " << k << "\n"
+                                                << ::testing::PrintToString(joined[k]) << "\n"
+                                                << ::testing::PrintToString(whole.rows[k]);
 }
 
 TEST(StageResume, InsideACoupledStage) { check_resume_inside(0, 0.012); }

@@ -30,3 +30,14 @@ def test_the_matching_cells_design_from_python(tmp_path):
 def test_the_demo_sweep(tmp_path):
     text = run_example("demo_sweep.py", "--quick", "-o", str(tmp_path / "sweep"), cwd=tmp_path)
     assert len(text.strip().splitlines()) == 4  # a header and a row per conductivity
+
+
+def test_the_step_convergence_study(tmp_path):
+    text = run_example("step_convergence.py", "--fractions", "0.2,0.1", "-o", str(tmp_path / "steps"), cwd=tmp_path)
+    lines = text.strip().splitlines()
+    lines = lines[next(k for k, line in enumerate(lines) if line.startswith("fraction")):]  # past the log lines
+    assert len(lines) == 3  # a header and a row per step
+    # Half the step, twice the steps of the fastest impact (the same grains strike alike
+    # early on; 5 % allows for the run's different later course).
+    first, second = (float(line.split()[6]) for line in lines[1:])
+    assert abs(second / first - 2.0) < 0.1

@@ -181,12 +181,15 @@ SolveOutcome solve(const CalibrationSpec& spec, const std::vector<doe::ResponseS
   return outcome;
 }
 
-/// The root to verify: inside the design range before outside it, then the one nearest
-/// the design centre in coded units (the surfaces are best known there).
-std::size_t chosen_solution(const CalibrationSpec& spec, const std::vector<doe::Solution>& solutions) {
-  std::size_t best = 0;
+/// The root to verify: one that keeps every factor's sign (none other can run: a negative
+/// conductivity is refused), inside the design range before outside it, then the one
+/// nearest the design centre in coded units (the surfaces are best known there). None
+/// when every root changes a factor's sign.
+std::optional<std::size_t> chosen_solution(const CalibrationSpec& spec, const std::vector<doe::Solution>& solutions) {
+  std::optional<std::size_t> best;
   double best_score = std::numeric_limits<double>::infinity();
   for (std::size_t s = 0; s < solutions.size(); ++s) {
+    if (!solutions[s].keeps_sign()) continue;
     double distance2 = 0.0;
     for (std::size_t f = 0; f < spec.factors.size(); ++f) {
       const auto& d = spec.factors[f].design;
@@ -341,24 +344,34 @@ int calibrate(const CalibrateOptions& options) {
                                 format_number(fit.predicted_r_squared, 5)));
   RunBatches::say(fmt::format("Solve {} ({}):", solved.text, solve_json["mode"].get<std::string>()));
   for (std::size_t s = 0; s < solved.solutions.size(); ++s)
-    RunBatches::say(fmt::format("  {}. {}{}", s + 1, solution_text(solved.solutions[s], names, fits),
-                                solved.solutions[s].inside() ? "" : "   OUTSIDE the design range"));
-  if (solved.solutions.empty()) {
+    RunBatches::say(fmt::format(
+        "  {}. {}{}{}", s + 1, solution_text(solved.solutions[s], names, fits),
+        solved.solutions[s].inside() ? "" : "   OUTSIDE the design range",
+        solved.solutions[s].keeps_sign()
+            ? ""
+            : fmt::format("   {} of the other sign from every design point", fmt::join(solved.solutions[s].sign_changed, ", "))));
+  const std::optional<std::size_t> chosen = chosen_solution(spec, solved.solutions);
+  if (solved.solutions.empty() || !chosen) {
     result["solution"] = nullptr;
     write_file_atomically(output / "calibration.json", result.dump(2) + "\n");
-    fmt::print(stderr, "regodem: error: the fitted surfaces do not reach the targets (no real root); see {}\n",
-               (output / "fit.txt").string());
+    if (solved.solutions.empty())
+      fmt::print(stderr, "regodem: error: the fitted surfaces do not reach the targets (no real root); see {}\n",
+                 (output / "fit.txt").string());
+    else
+      fmt::print(stderr,
+                 "regodem: error: every root gives a factor the other sign from all its design points, so none is "
+                 "run (a wider or shifted design, or other responses, may reach the targets); see {}\n",
+                 (output / "fit.txt").string());
     return exit_status::run_failed;
   }
-  const std::size_t chosen = chosen_solution(spec, solved.solutions);
-  const doe::Solution& solution = solved.solutions[chosen];
+  const doe::Solution& solution = solved.solutions[*chosen];
   if (!solution.inside())
     fmt::print(stderr,
                "regodem: warning: the solution lies outside the design range ({}): the surfaces are "
                "extrapolated there\n",
                fmt::join(solution.outside, ", "));
   result["solution"] = ordered_json(solution_json(solution, names, fits));
-  result["solution"]["index"] = chosen + 1;
+  result["solution"]["index"] = *chosen + 1;
 
   // 4. The verification run at the solution.
   PlannedRun verification{total, "verification", spec.scenario, common_set, factor_description(spec, solution.factors)};
@@ -369,7 +382,7 @@ int calibrate(const CalibrateOptions& options) {
   const ordered_json verified = read_summary(batches.directory(verification));
   result["verification"] = {{"directory", batches.directory(verification).string()},
                             {"responses", ordered_json::object()}};
-  RunBatches::say(fmt::format("\nVerification at root {} ({}):", chosen + 1, verification.description));
+  RunBatches::say(fmt::format("\nVerification at root {} ({}):", *chosen + 1, verification.description));
   RunBatches::say(
       fmt::format("  {:<16} {:>14} {:>14} {:>14} {:>14}", "response", "target", "achieved", "difference", "fitted"));
   for (std::size_t r = 0; r < spec.responses.size(); ++r) {

@@ -237,7 +237,7 @@ void Simulation::book_end_of_step_losses() {
   if (shares) block_node_end_of_step_W_.assign(blocks * n_nodes, 0.0);
   double* __restrict block_node = block_node_end_of_step_W_.data();
   const double* __restrict own_spin = own_spin_resistance_N_m_.data();
-  const double dt = settings_.time_step_s;
+  const Vec3* __restrict own_spin_torque = own_spin_torque_N_m_.data();
 #pragma omp parallel for schedule(static, block_size) num_threads(active_threads_) if (n > 4096)
   for (std::size_t p = 0; p < n; ++p) {
     const LossyActions& a = lossy[p];
@@ -255,8 +255,7 @@ void Simulation::book_end_of_step_losses() {
       const WallLossShare& share = wall_loss[p];
       // EDEM's own-spin torque comes from the particle's whole resistance: each wall's
       // part of its loss is in proportion to that wall's (weighted) resistance.
-      const double own_spin_loss_W =
-          own_spin[p] > 0.0 ? -dot(RollingOwnSpin::torque(w[p], own_spin[p], inv_inertia[p], dt), end_spin) : 0.0;
+      const double own_spin_loss_W = own_spin[p] > 0.0 ? -dot(own_spin_torque[p], end_spin) : 0.0;
       for (int slot = 0; slot < 2 && share.node[slot] != WallLossShare::no_node; ++slot) {
         const LossyActions& s = share.actions[slot];
         double wall_W = share.rolling_wall_power_W[slot] - dot(s.rolling_torque_N_m, end_spin) -
@@ -469,6 +468,31 @@ void Simulation::report_blow_up(const std::string& what, double at_time_s, std::
   throw SimulationError(fmt::format("the simulation became unstable at t = {:.6g} s (step {})", at_time_s, at_step));
 }
 
+void Simulation::apply_own_spin_rolling() {
+  // EDEM's own-spin rolling, once every other torque on the particle is in (contacts and
+  // bonds): the implicit static limit needs them all (RollingOwnSpin).
+  const std::size_t n = particles.size();
+  const double dt = settings_.time_step_s;
+  const Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
+  const double* __restrict inv_inertia = particles.inv_inertia.data();
+  const double* __restrict resistance = own_spin_resistance_N_m_.data();
+  Vec3* __restrict torque = particles.torque_N_m.data();
+  const bool audit = !particle_lossy_.empty();
+  own_spin_torque_N_m_.resize(audit ? n : 0);
+  Vec3* __restrict own_spin_torque = own_spin_torque_N_m_.data();
+  LossyActions* __restrict lossy = particle_lossy_.data();
+#pragma omp parallel for schedule(static) num_threads(active_threads_) if (n > 4096)
+  for (std::size_t p = 0; p < n; ++p) {
+    const Vec3 t = resistance[p] > 0.0 ? RollingOwnSpin::torque(w[p], torque[p], resistance[p], inv_inertia[p], dt)
+                                       : Vec3{};
+    torque[p] += t;
+    if (audit) {
+      own_spin_torque[p] = t;
+      lossy[p].rolling_torque_N_m += t;
+    }
+  }
+}
+
 void Simulation::compute_forces(double slip_time_s) {
   // Heat off, or the energy books not kept, costs nothing: the pair loop is compiled for each.
   const bool books = keeps_energy_audit();
@@ -477,6 +501,7 @@ void Simulation::compute_forces(double slip_time_s) {
   else
     books ? compute_forces_and_heat<false, true>(slip_time_s) : compute_forces_and_heat<false, false>(slip_time_s);
   if (!bonds_.empty()) apply_bonds(slip_time_s);
+  if (contact_parameters_.any_own_spin()) apply_own_spin_rolling();
   if (!particle_lossy_.empty()) book_end_of_step_losses();
   // The losses and stored energy of contacts and bonds, block by block in order.
   generated_heat_W_ = dissipated_power_W_ = contact_elastic_energy_J_ = spring_source_W_ = 0.0;
@@ -872,12 +897,6 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       torque[j] += torque_j;
       own_spin[j] += own_spin_j;
       if constexpr (Heat) heat[j] += heat_j;
-      // EDEM's own-spin rolling, once the particle's resistance is summed (RollingOwnSpin).
-      if (own_spin[j] > 0.0) {
-        const Vec3 own_spin_torque = RollingOwnSpin::torque(w[j], own_spin[j], inv_inertia[j], dt);
-        torque[j] += own_spin_torque;
-        if constexpr (audit) lossy_j.rolling_torque_N_m += own_spin_torque;
-      }
       if constexpr (audit) lossy[j] += lossy_j;
     }
   }

@@ -232,6 +232,7 @@ class Simulation {
   void drop_particles(const std::vector<char>& flags);
   /// slip_time_s: dt after a step, 0 when re-evaluating an unchanged state.
   void compute_forces(double slip_time_s);
+  void apply_own_spin_rolling();  // after every other torque: its static limit needs them
   /// Returns the largest squared displacement since the last neighbour build over the
   /// particle's squared half of the skin (NeighborSkin; above 1: rebuild).
   double first_half_kick_and_drift();
@@ -349,6 +350,7 @@ class Simulation {
   std::vector<double> partition_weight_;
   // Per particle, each contact pass: the summed own-spin rolling resistance (RollingOwnSpin).
   std::vector<double> own_spin_resistance_N_m_;
+  std::vector<Vec3> own_spin_torque_N_m_;  // its rolling torque, kept for the audit
   struct MeshScratch {  // per thread
     MeshTouchFinder finder;
     std::vector<MeshTouch> touches;

@@ -532,18 +532,26 @@ TEST(CliBadInput, TimeStepAboveTheStableOneIsRefused) {
 
 namespace {
 
+/// Every row of a CSV output, by column name.
+std::vector<std::map<std::string, double>> all_rows(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::map<std::string, double>& row = rows.emplace_back();
+    std::istringstream names(header), values(line);
+    for (std::string name, value; std::getline(names, name, ',') && std::getline(values, value, ',');)
+      row[name] = std::stod(value);
+  }
+  return rows;
+}
+
 /// The last row of a time series, by column name.
 std::map<std::string, double> last_row(const fs::path& csv) {
-  std::ifstream in(csv);
-  std::string header, line, last;
-  std::getline(in, header);
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  std::map<std::string, double> row;
-  std::istringstream names(header), values(last);
-  for (std::string name, value; std::getline(names, name, ',') && std::getline(values, value, ',');)
-    row[name] = std::stod(value);
-  return row;
+  const std::vector<std::map<std::string, double>> rows = all_rows(csv);
+  return rows.empty() ? std::map<std::string, double>{} : rows.back();
 }
 
 // The paper's matching cell (scenarios/paper/tiny: the same stages in a 6 mm cell): the
@@ -565,7 +573,19 @@ TEST_F(CliTest, PaperMatchingCellChainRunsEndToEnd) {
   const nlohmann::json w0_summary = nlohmann::json::parse(read_file(w0 / "summary.json"));
   const nlohmann::json& w0_band = w0_summary["measurements"]["bands"]["sieve_plane"]["final"];
   EXPECT_GE(w0_band["T_in_K"].get<double>(), 446.8);
-  EXPECT_LT(w0_band["T_in_K"].get<double>(), 446.8 + 2.0);  // one heat step past it, not more
+  // It stops on the heat step past the target, not at the next band row: the row before
+  // the last is still below 446.8 K, and the last comes sooner than a row's interval after
+  // it (a stop checked only at output rows would land on the interval).
+  {
+    const std::vector<std::map<std::string, double>> band_rows = all_rows(w0 / "regions" / "sieve_plane.csv");
+    ASSERT_GE(band_rows.size(), 3u);
+    const auto& last = band_rows.back();
+    const auto& before = band_rows[band_rows.size() - 2];
+    const auto& earlier = band_rows[band_rows.size() - 3];
+    EXPECT_DOUBLE_EQ(last.at("T_in [K]"), w0_band["T_in_K"].get<double>());
+    EXPECT_LT(before.at("T_in [K]"), 446.8);
+    EXPECT_LT(last.at("time [s]") - before.at("time [s]"), 0.99 * (before.at("time [s]") - earlier.at("time [s]")));
+  }
   const double heating_s = w0_summary["stages"][1]["duration_s"].get<double>();
   EXPECT_GT(heating_s, 1.0);
 
@@ -597,6 +617,7 @@ TEST_F(CliTest, PaperMatchingCellChainRunsEndToEnd) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json calibration = nlohmann::json::parse(read_file(directory_ / "calibration" / "calibration.json"));
   EXPECT_DOUBLE_EQ(calibration["targets"]["T_in"]["value"].get<double>(), w0_band["T_in_K"].get<double>());
+  EXPECT_TRUE(calibration["solution"]["keeps_design_sign"].get<bool>());  // never a negative conductivity
   const double achieved_K = calibration["verification"]["responses"]["T_in"]["achieved"].get<double>();
   EXPECT_GT(achieved_K, 77.15);
   EXPECT_LT(achieved_K, 973.15);

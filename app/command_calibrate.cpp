@@ -181,27 +181,23 @@ SolveOutcome solve(const CalibrationSpec& spec, const std::vector<doe::ResponseS
   return outcome;
 }
 
-/// The root to verify: one that keeps every factor's sign (none other can run: a negative
-/// conductivity is refused), inside the design range before outside it, then the one
-/// nearest the design centre in coded units (the surfaces are best known there). None
-/// when every root changes a factor's sign.
-std::optional<std::size_t> chosen_solution(const CalibrationSpec& spec, const std::vector<doe::Solution>& solutions) {
-  std::optional<std::size_t> best;
-  double best_score = std::numeric_limits<double>::infinity();
-  for (std::size_t s = 0; s < solutions.size(); ++s) {
-    if (!solutions[s].keeps_sign()) continue;
+/// The roots in the order they are preferred for verification: inside the design range
+/// before outside it, then nearest the design centre in coded units (the surfaces are best
+/// known there).
+std::vector<std::size_t> preferred_roots(const CalibrationSpec& spec, const std::vector<doe::Solution>& solutions) {
+  std::vector<std::pair<bool, double>> keys;
+  for (const doe::Solution& solution : solutions) {
     double distance2 = 0.0;
     for (std::size_t f = 0; f < spec.factors.size(); ++f) {
       const auto& d = spec.factors[f].design;
-      distance2 += std::pow((solutions[s].factors[f] - d.centre) / d.step, 2);
+      distance2 += std::pow((solution.factors[f] - d.centre) / d.step, 2);
     }
-    const double score = (solutions[s].inside() ? 0.0 : 1e300) + distance2;
-    if (score < best_score) {
-      best_score = score;
-      best = s;
-    }
+    keys.emplace_back(!solution.inside(), distance2);
   }
-  return best;
+  std::vector<std::size_t> order(solutions.size());
+  for (std::size_t s = 0; s < order.size(); ++s) order[s] = s;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+  return order;
 }
 
 std::string interrupted_line(const CalibrateOptions& options, const fs::path& output, int finished, int total) {
@@ -344,14 +340,25 @@ int calibrate(const CalibrateOptions& options) {
                                 format_number(fit.predicted_r_squared, 5)));
   RunBatches::say(fmt::format("Solve {} ({}):", solved.text, solve_json["mode"].get<std::string>()));
   for (std::size_t s = 0; s < solved.solutions.size(); ++s)
-    RunBatches::say(fmt::format(
-        "  {}. {}{}{}", s + 1, solution_text(solved.solutions[s], names, fits),
-        solved.solutions[s].inside() ? "" : "   OUTSIDE the design range",
-        solved.solutions[s].keeps_sign()
-            ? ""
-            : fmt::format("   {} of the other sign from every design point", fmt::join(solved.solutions[s].sign_changed, ", "))));
-  const std::optional<std::size_t> chosen = chosen_solution(spec, solved.solutions);
-  if (solved.solutions.empty() || !chosen) {
+    RunBatches::say(fmt::format("  {}. {}{}", s + 1, solution_text(solved.solutions[s], names, fits),
+                                solved.solutions[s].inside() ? "" : "   OUTSIDE the design range"));
+  // The root verified: the first preferred one whose values the scenario accepts (a root
+  // can give a conductivity below zero, a restitution above one).
+  std::optional<std::size_t> chosen;
+  for (const std::size_t s : preferred_roots(spec, solved.solutions)) {
+    std::vector<std::string> set = common_set;
+    const auto sets = factor_sets(spec, solved.solutions[s].factors);
+    set.insert(set.end(), sets.begin(), sets.end());
+    try {
+      PreparedRun::build(read_scenario_file(spec.scenario, set), 1);
+      chosen = s;
+      break;
+    } catch (const InputError& problem) {
+      result["solve"]["solutions"][s]["refused"] = problem.what();
+      RunBatches::say(fmt::format("  root {} is not run: the scenario refuses its values: {}", s + 1, problem.what()));
+    }
+  }
+  if (!chosen) {
     result["solution"] = nullptr;
     write_file_atomically(output / "calibration.json", result.dump(2) + "\n");
     if (solved.solutions.empty())
@@ -359,9 +366,9 @@ int calibrate(const CalibrateOptions& options) {
                  (output / "fit.txt").string());
     else
       fmt::print(stderr,
-                 "regodem: error: every root gives a factor the other sign from all its design points, so none is "
-                 "run (a wider or shifted design, or other responses, may reach the targets); see {}\n",
-                 (output / "fit.txt").string());
+                 "regodem: error: the scenario refuses the values of every root, so none is run (a wider or "
+                 "shifted design, or other responses, may reach the targets); see {}\n",
+                 (output / "calibration.json").string());
     return exit_status::run_failed;
   }
   const doe::Solution& solution = solved.solutions[*chosen];

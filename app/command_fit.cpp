@@ -9,7 +9,6 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
@@ -237,9 +236,6 @@ json solve_and_report(const FitOptions& options, const FitInputs& in, const std:
       fmt::print(stderr, "regodem: warning: root {} lies outside the design range ({}): the surface is extrapolated "
                          "there\n",
                  s + 1, describe_ranges(solution.outside, in));
-    if (!solution.keeps_sign())
-      fmt::print(stderr, "regodem: warning: root {} gives {} the other sign from every design point\n", s + 1,
-                 fmt::join(solution.sign_changed, ", "));
     j["solutions"].push_back(solution_json(solution, in.factor_names, fits));
   }
   return j;

@@ -107,8 +107,7 @@ json solution_json(const doe::Solution& solution, const std::vector<std::string>
   for (std::size_t f = 0; f < solution.factors.size(); ++f) jf[factor_names[f]] = solution.factors[f];
   for (const auto& fit : fits) jr[fit.response_name] = fit.model.evaluate(solution.factors);
   return {
-      {"factors", jf}, {"responses", jr}, {"inside_design_range", solution.inside()}, {"outside", solution.outside},
-          {"keeps_design_sign", solution.keeps_sign()}, {"sign_changed", solution.sign_changed}};
+      {"factors", jf}, {"responses", jr}, {"inside_design_range", solution.inside()}, {"outside", solution.outside}};
 }
 
 }  // namespace regodem::app

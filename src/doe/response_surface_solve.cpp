@@ -88,14 +88,6 @@ std::vector<std::string> factors_outside(const std::vector<double>& x, const std
   return outside;
 }
 
-std::vector<std::string> factors_changing_sign(const std::vector<double>& x, const std::vector<FactorRange>& ranges,
-                                               const std::vector<std::string>& names) {
-  std::vector<std::string> changed;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    if ((ranges[i].low > 0.0 && x[i] <= 0.0) || (ranges[i].high < 0.0 && x[i] >= 0.0)) changed.push_back(names[i]);
-  return changed;
-}
-
 std::vector<double> solve_for_one_factor(const PolynomialModel& model, double target, const std::vector<double>& x,
                                          std::size_t free_factor) {
   // The surface as a·t² + b·t + c in the free factor t: each term contributes its
@@ -153,9 +145,8 @@ std::vector<Solution> solve_sequentially(const std::vector<SolveStep>& steps, co
   }
   std::vector<Solution> solutions;
   for (std::vector<double>& x : chains) {
-    Solution s{std::move(x), {}, {}};
+    Solution s{std::move(x), {}};
     s.outside = factors_outside(s.factors, ranges, steps.front().model->factor_names);
-    s.sign_changed = factors_changing_sign(s.factors, ranges, steps.front().model->factor_names);
     solutions.push_back(std::move(s));
   }
   return solutions;
@@ -199,9 +190,8 @@ std::vector<Solution> solve_simultaneously(const std::vector<const PolynomialMod
   });
   std::vector<Solution> solutions;
   for (std::vector<double>& root : roots) {
-    Solution s{std::move(root), {}, {}};
+    Solution s{std::move(root), {}};
     s.outside = factors_outside(s.factors, ranges, models.front()->factor_names);
-    s.sign_changed = factors_changing_sign(s.factors, ranges, models.front()->factor_names);
     solutions.push_back(std::move(s));
   }
   return solutions;

@@ -19,21 +19,12 @@ struct FactorRange {
 struct Solution {
   std::vector<double> factors;       // every factor's value, the fixed ones included
   std::vector<std::string> outside;  // factors whose value lies outside their design range
-  // Factors whose value is zero or of the other sign from every design point: a design that
-  // never crosses zero (a conductivity from 17 to 583 W/(m K)) says the value cannot.
-  std::vector<std::string> sign_changed;
   bool inside() const { return outside.empty(); }
-  bool keeps_sign() const { return sign_changed.empty(); }
 };
 
 /// Names the factors of `x` outside `ranges` (with a margin of 1e-9 of each range).
 std::vector<std::string> factors_outside(const std::vector<double>& x, const std::vector<FactorRange>& ranges,
                                          const std::vector<std::string>& names);
-
-/// Names the factors of `x` that are zero or of the other sign from the whole of their
-/// range (only for ranges that do not contain zero).
-std::vector<std::string> factors_changing_sign(const std::vector<double>& x, const std::vector<FactorRange>& ranges,
-                                               const std::vector<std::string>& names);
 
 /// (a) One response, one free factor, the others held at `x` (the free entry is ignored):
 /// the surface is a polynomial of degree ≤ 2 in the free factor, so the roots come in closed

@@ -91,29 +91,6 @@ TEST(ResponseSurfaceSolve, TogetherFindsRootsJustOutsideTheDesignRange) {
   EXPECT_EQ(roots[1].outside, (std::vector<std::string>{"A", "B"}));
 }
 
-// A root of the other sign from every design point cannot run (a conductivity of −300
-// W/(m K) from a design of 17 to 583): it is named, so that `calibrate` never verifies it.
-// T_d = (λ + 300)(λ − 1100) = 0 has the roots −300 and 1100, both beyond the design range.
-TEST(ResponseSurfaceSolve, RootsOfTheOtherSignFromTheDesignAreNamed) {
-  const PolynomialModel two_roots{names, paper_terms, {-330000.0, 0.0, -800.0, 1.0}};
-  const std::vector<Solution> roots = solve_sequentially({{&two_roots, 0.0, 1}}, {1200.0, 0.0}, design_range);
-  ASSERT_EQ(roots.size(), 2U);
-  EXPECT_NEAR(roots[0].factors[1], -300.0, 1e-9);
-  EXPECT_NEAR(roots[1].factors[1], 1100.0, 1e-9);
-  EXPECT_EQ(roots[0].sign_changed, std::vector<std::string>{"lambda_wall"});
-  EXPECT_FALSE(roots[0].keeps_sign());
-  EXPECT_TRUE(roots[1].keeps_sign());
-  EXPECT_FALSE(roots[1].inside());
-  // Negative ranges keep their sign the same way; zero counts as a change; a range that
-  // holds zero allows either sign.
-  const std::vector<std::string> one = {"A"};
-  EXPECT_TRUE(factors_changing_sign({-3.0}, {{-5.0, -1.0}}, one).empty());
-  EXPECT_EQ(factors_changing_sign({0.0}, {{-5.0, -1.0}}, one), one);
-  EXPECT_EQ(factors_changing_sign({2.0}, {{-5.0, -1.0}}, one), one);
-  EXPECT_EQ(factors_changing_sign({0.0}, {{1.0, 5.0}}, one), one);
-  EXPECT_TRUE(factors_changing_sign({-7.0}, {{-1.0, 5.0}}, one).empty());
-}
-
 TEST(ResponseSurfaceSolve, ClosedFormCases) {
   const std::vector<std::string> ab = {"A", "B"};
   // Linear in the free factor: one root.

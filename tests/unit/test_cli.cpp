@@ -618,6 +618,27 @@ TEST_F(CliTest, PaperMatchingCellChainRunsEndToEnd) {
       EXPECT_TRUE(contains(root["refused"].get<std::string>(), "greater than 0")) << root.dump();
     }
   EXPECT_GT(calibration["solution"]["factors"]["lambda_wall"].get<double>(), 0.0);
+  // The root verified is the first, inside the design range before outside and then
+  // nearest the centre in coded units, that was not refused; every root before it was.
+  {
+    const auto& roots = calibration["solve"]["solutions"];
+    std::vector<std::pair<std::pair<bool, double>, std::size_t>> order;
+    for (std::size_t k = 0; k < roots.size(); ++k) {
+      double distance2 = 0.0;
+      for (const auto& factor : calibration["factors"]) {
+        const double x = roots[k]["factors"][factor["name"].get<std::string>()].get<double>();
+        distance2 += std::pow((x - factor["centre"].get<double>()) / factor["step"].get<double>(), 2);
+      }
+      order.push_back({{!roots[k]["inside_design_range"].get<bool>(), distance2}, k});
+    }
+    std::stable_sort(order.begin(), order.end());
+    const std::size_t verified = calibration["solution"]["index"].get<std::size_t>() - 1;
+    for (const auto& [key, k] : order) {
+      if (k == verified) break;
+      EXPECT_TRUE(roots[k].contains("refused")) << "root " << k + 1 << " was preferred but not run: " << roots[k].dump();
+    }
+    EXPECT_FALSE(roots[verified].contains("refused"));
+  }
   const double achieved_K = calibration["verification"]["responses"]["T_in"]["achieved"].get<double>();
   EXPECT_GT(achieved_K, 77.15);
   EXPECT_LT(achieved_K, 973.15);

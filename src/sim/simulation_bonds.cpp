@@ -164,7 +164,8 @@ void Simulation::apply_bonds(double dt_s) {
     const BondLoads loads_before = bonds_.loads[b];
     BondAction a = update_bond(p, section, bonds_.rest_length_m[b], k, dt_s, inv_m > 0.0 ? 1.0 / inv_m : 0.0,
                                inv_i > 0.0 ? 1.0 / inv_i : 0.0, bonds_.normal[b], bonds_.loads[b]);
-    const BondBreak mode = bond_failure(bond_stresses(bonds_.loads[b], section), p);
+    const BondBreak mode =
+        bond_holds(bonds_.loads[b], section, p) ? BondBreak::none : bond_failure(bond_stresses(bonds_.loads[b], section), p);
     bonds_.broken[b] = static_cast<std::uint8_t>(mode);
     double q = 0.0;
     if (mode != BondBreak::none) {

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "contact/parallel_bond.hpp"
+#include "core/rng.hpp"
 
 namespace regodem {
 namespace {
@@ -103,6 +104,37 @@ TEST(ParallelBond, ShearTwistAndBendIncrements) {
     expect_vec_near(loads.bend_moment_N_m, {0, 0, mb}, 1e-12 * mb);
     EXPECT_NEAR(norm(loads.shear_force_N), 0.0, 1e-30);
   }
+}
+
+// The pass's square-root-free check decides as the stresses do: loads drawn so that each
+// part of sigma and tau runs from -1 to 1.5 strengths (both criteria near their limits
+// and past them, compression, tension), every draw must agree exactly; the two outcomes
+// must both occur, or the test has not tested anything.
+TEST(ParallelBond, HoldsAgreesWithTheStresses) {
+  const BondParameters p = params();
+  const BondSection s = BondSection::of_radius(0.75e-3);
+  Rng rng(2026);
+  auto in_plane = [&](double magnitude) {
+    const double a = rng.uniform(0.0, 2.0 * kPi);
+    return Vec3{0.0, magnitude * std::cos(a), magnitude * std::sin(a)};
+  };
+  int held = 0, failed = 0;
+  for (int draw = 0; draw < 20000; ++draw) {
+    BondLoads loads;
+    loads.normal_force_N = rng.uniform(-1.0, 1.5) * p.tensile_strength_Pa * s.area_m2;
+    loads.bend_moment_N_m = in_plane(rng.uniform(0.0, 1.5) * p.tensile_strength_Pa * s.inertia_m4 / s.radius_m);
+    loads.shear_force_N = in_plane(rng.uniform(0.0, 1.5) * p.shear_strength_Pa * s.area_m2);
+    loads.twist_moment_N_m = rng.uniform(-1.5, 1.5) * p.shear_strength_Pa * s.polar_inertia_m4 / s.radius_m;
+    const bool holds = bond_failure(bond_stresses(loads, s), p) == BondBreak::none;
+    ASSERT_EQ(bond_holds(loads, s, p), holds) << "draw " << draw;
+    (holds ? held : failed)++;
+  }
+  EXPECT_GT(held, 1000);
+  EXPECT_GT(failed, 1000);
+  // NaN loads: not "holds", so the pass asks bond_failure, which keeps them (as before).
+  BondLoads nan_loads;
+  nan_loads.normal_force_N = std::nan("");
+  EXPECT_FALSE(bond_holds(nan_loads, s, p));
 }
 
 TEST(ParallelBond, StressesAndFailureModes) {

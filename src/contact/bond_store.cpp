@@ -52,8 +52,10 @@ void BondStore::renumber(const std::vector<std::uint32_t>& new_index_of_old, std
 }
 
 void BondStore::remove_broken(const ParticleStore& particles) {
+  // The bonds before the first broken one stay where they are.
   std::size_t kept = 0;
-  for (std::size_t b = 0; b < size(); ++b) {
+  while (kept < size() && !broken[kept]) ++kept;
+  for (std::size_t b = kept; b < size(); ++b) {
     if (broken[b]) continue;
     id_i[kept] = id_i[b];
     id_j[kept] = id_j[b];

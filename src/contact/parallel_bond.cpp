@@ -53,127 +53,93 @@ double bond_elastic_energy_J(const BondParameters& p, const BondSection& section
 
 namespace {
 
-/// A rotation by the rotation vector phi in Rodrigues form, v' = v c + (phi x v) s1 +
-/// phi (phi.v) c1 with c = cos a, s1 = sin(a)/a, c1 = (1 - cos a)/a^2, a = |phi|. The
-/// bond pass turns three vectors by one spin per bond per step, where a is tiny: the
-/// series (error a^8/9! < 1e-21 for a < 0.01) then replaces sin, cos and the square root.
-struct Rotation {
-  Vec3 phi;
-  double c = 1.0, s1 = 1.0, c1 = 0.5;
-
-  explicit Rotation(const Vec3& rotation_vector) : phi(rotation_vector) {
-    const double a2 = norm2(phi);
-    if (a2 < 1e-4) {
-      s1 = 1.0 - a2 / 6.0 * (1.0 - a2 / 20.0 * (1.0 - a2 / 42.0));
-      c1 = 0.5 * (1.0 - a2 / 12.0 * (1.0 - a2 / 30.0 * (1.0 - a2 / 56.0)));
-      c = 1.0 - a2 * c1;
-    } else {
-      const double a = std::sqrt(a2);
-      c = std::cos(a);
-      s1 = std::sin(a) / a;
-      c1 = (1.0 - c) / a2;
-    }
-  }
-  Vec3 operator()(const Vec3& v) const { return v * c + cross(phi, v) * s1 + phi * (dot(phi, v) * c1); }
-};
+using bond_kernel::V3;
+V3<double> lanes(const Vec3& v) { return {v.x, v.y, v.z}; }
+Vec3 vec(const V3<double>& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace
 
-Vec3 rotate_by(const Vec3& v, const Vec3& phi) { return Rotation(phi)(v); }
-
-namespace {
-
-/// The smallest rotation taking unit vector a onto unit vector b, about a x b, without
-/// trigonometry: v' = v c + (k x v) + k (k.v)/(1 + c), k = a x b (|k| = sin), c = a.b.
-struct MinimalRotation {
-  Vec3 k;
-  double c = 1.0, c1 = 0.5;
-  bool flip = false;  // a half turn: the bond flipped, no meaningful frame
-
-  MinimalRotation(const Vec3& a, const Vec3& b) : k(cross(a, b)), c(dot(a, b)) {
-    flip = c <= -1.0 + 1e-12;
-    if (!flip) c1 = 1.0 / (1.0 + c);
+bond_kernel::SeriesRotation<double> bond_spin_rotation(const V3<double>& phi) {
+  bond_kernel::SeriesRotation<double> r = bond_kernel::series_rotation(phi);
+  const double a2 = dot(phi, phi);
+  if (!(a2 < bond_kernel::kSeriesLimit)) {
+    const double a = std::sqrt(a2);
+    r.c = std::cos(a);
+    r.s1 = std::sin(a) / a;
+    r.c1 = (1.0 - r.c) / a2;
   }
-  Vec3 operator()(const Vec3& v) const { return flip ? -v : v * c + cross(k, v) + k * (dot(k, v) * c1); }
-};
+  return r;
+}
 
-}  // namespace
+Vec3 rotate_by(const Vec3& v, const Vec3& phi) { return vec(bond_spin_rotation(lanes(phi))(lanes(v))); }
 
-Vec3 rotate_between(const Vec3& v, const Vec3& a, const Vec3& b) { return MinimalRotation(a, b)(v); }
+Vec3 rotate_between(const Vec3& v, const Vec3& a, const Vec3& b) {
+  return vec(bond_kernel::smallest_rotation(lanes(a), lanes(b))(lanes(v)));
+}
+
+bond_kernel::BondStepInput<double> bond_step_input(const BondParameters& p, const BondSection& section,
+                                                   double rest_length_m, const BondKinematics& k,
+                                                   const Vec3& normal, const BondLoads& loads) {
+  bond_kernel::BondStepInput<double> in;
+  in.position_i = lanes(k.position_i_m);
+  in.position_j = lanes(k.position_j_m);
+  in.velocity_i = lanes(k.velocity_i_m_per_s);
+  in.velocity_j = lanes(k.velocity_j_m_per_s);
+  in.spin_i = lanes(k.angular_velocity_i_rad_per_s);
+  in.spin_j = lanes(k.angular_velocity_j_rad_per_s);
+  in.radius_i = k.radius_i_m;
+  in.radius_j = k.radius_j_m;
+  in.rest_length = rest_length_m;
+  in.normal = lanes(normal);
+  in.normal_force = loads.normal_force_N;
+  in.twist_moment = loads.twist_moment_N_m;
+  in.shear_force = lanes(loads.shear_force_N);
+  in.bend_moment = lanes(loads.bend_moment_N_m);
+  in.normal_stiffness = p.normal_stiffness_Pa_per_m * section.area_m2;
+  in.shear_stiffness = p.shear_stiffness_Pa_per_m * section.area_m2;
+  in.twist_stiffness = p.shear_stiffness_Pa_per_m * section.polar_inertia_m4;
+  in.bend_stiffness = p.normal_stiffness_Pa_per_m * section.inertia_m4;
+  return in;
+}
 
 BondAction update_bond(const BondParameters& p, const BondSection& section, double rest_length_m,
                        const BondKinematics& k, double dt_s, double effective_mass_kg,
                        double effective_inertia_kg_m2, Vec3& normal, BondLoads& loads) {
-  const Vec3 d = k.position_j_m - k.position_i_m;
-  const double length = norm(d), inv_length = 1.0 / length;
-  const Vec3 n = d * inv_length;
-
-  // 1. Turn the stored loads with the pair: first with the mean spin of the two
-  // particles over the step (exact for a rigid rotation of the pair, whatever its axis),
-  // then by the smallest rotation that takes the spun old normal onto the new one (the
-  // part of the normal's change that relative translation made).
-  const Rotation spin((k.angular_velocity_i_rad_per_s + k.angular_velocity_j_rad_per_s) * (0.5 * dt_s));
-  const MinimalRotation align(spin(normal), n);
-  Vec3 shear = align(spin(loads.shear_force_N));
-  Vec3 bend = align(spin(loads.bend_moment_N_m));
-  // Round-off leaves a tiny normal component; the in-plane loads stay in the plane.
-  shear -= n * dot(shear, n);
-  bend -= n * dot(bend, n);
-  normal = n;
-
-  // 2. Relative motion of j with respect to i at the bond, whose centre lies on the
-  // line of centres at arm_i from i (midway into the gap or overlap, as for contacts).
-  // The velocities are those that moved the centres over the step, so the lever arms
-  // are taken at mid-step, d_mid = d - (v_j - v_i) dt/2: for a rigid rotation by theta
-  // per step the contact points then slip by theta^3/12 of the arm instead of
-  // theta^2/2 (the Cayley form of a rotation), so a spinning pair loads no spring.
-  const double arm_i = 0.5 * (length + k.radius_i_m - k.radius_j_m);
-  const double arm_j = length - arm_i;
-  const Vec3 wi = k.angular_velocity_i_rad_per_s, wj = k.angular_velocity_j_rad_per_s;
-  const Vec3 centre_velocity = k.velocity_j_m_per_s - k.velocity_i_m_per_s;
-  const Vec3 d_mid = d - centre_velocity * (0.5 * dt_s);
-  const Vec3 n_mid = normalized(d_mid);
-  const Vec3 relative_velocity =
-      centre_velocity - cross(wj, d_mid * (arm_j * inv_length)) - cross(wi, d_mid * (arm_i * inv_length));
-  const double normal_speed = dot(relative_velocity, n_mid);
-  Vec3 shear_velocity = relative_velocity - n_mid * normal_speed;
-  shear_velocity -= n * dot(shear_velocity, n);  // into the new bond plane
-  const Vec3 relative_spin = wj - wi;
-  const double twist_rate = dot(relative_spin, n_mid);
-  Vec3 bend_rate = relative_spin - n_mid * twist_rate;
-  bend_rate -= n * dot(bend_rate, n);
-
-  // 3. Increments (Potyondy & Cundall 2004 Eq. 10, 11; DESIGN.md section 2), and the
-  // normal force from the total stretch.
-  const double kn_area = p.normal_stiffness_Pa_per_m * section.area_m2;
-  const double ks_area = p.shear_stiffness_Pa_per_m * section.area_m2;
-  const double kt = p.shear_stiffness_Pa_per_m * section.polar_inertia_m4;
-  const double kb = p.normal_stiffness_Pa_per_m * section.inertia_m4;
-  loads.normal_force_N = kn_area * (length - rest_length_m);
-  loads.shear_force_N = shear + shear_velocity * (ks_area * dt_s);
-  loads.twist_moment_N_m += kt * twist_rate * dt_s;
-  loads.bend_moment_N_m = bend + bend_rate * (kb * dt_s);
+  // Steps 1-3 (turn the stored loads with the pair, the relative motion at the bond, the
+  // increments) are bond_kernel::bond_step, which the batched pass runs on lanes too.
+  const bond_kernel::BondStepInput<double> in = bond_step_input(p, section, rest_length_m, k, normal, loads);
+  // The pair's mean spin over the step (exact for a rigid rotation of the pair, whatever its axis).
+  const bond_kernel::BondStepOutput<double> s =
+      bond_kernel::bond_step(in, bond_spin_rotation((in.spin_i + in.spin_j) * (0.5 * dt_s)), dt_s);
+  normal = vec(s.normal);
+  loads.normal_force_N = s.normal_force;
+  loads.shear_force_N = vec(s.shear_force);
+  loads.twist_moment_N_m = s.twist_moment;
+  loads.bend_moment_N_m = vec(s.bend_moment);
 
   // 4. Forces, with the optional viscous damping of each component.
-  double normal_force = loads.normal_force_N, twist = loads.twist_moment_N_m;
-  Vec3 shear_force = loads.shear_force_N, bend_moment = loads.bend_moment_N_m;
+  double normal_force = s.normal_force, twist = s.twist_moment;
+  V3<double> shear_force = s.shear_force, bend_moment = s.bend_moment;
   BondAction out;
   if (p.damping_ratio > 0.0) {
     const double c = 2.0 * p.damping_ratio;
-    const double c_normal = c * std::sqrt(kn_area * effective_mass_kg), c_shear = c * std::sqrt(ks_area * effective_mass_kg);
-    const double c_twist = c * std::sqrt(kt * effective_inertia_kg_m2), c_bend = c * std::sqrt(kb * effective_inertia_kg_m2);
-    normal_force += c_normal * normal_speed;
-    shear_force += shear_velocity * c_shear;
-    twist += c_twist * twist_rate;
-    bend_moment += bend_rate * c_bend;
+    const double c_normal = c * std::sqrt(in.normal_stiffness * effective_mass_kg),
+                 c_shear = c * std::sqrt(in.shear_stiffness * effective_mass_kg);
+    const double c_twist = c * std::sqrt(in.twist_stiffness * effective_inertia_kg_m2),
+                 c_bend = c * std::sqrt(in.bend_stiffness * effective_inertia_kg_m2);
+    normal_force += c_normal * s.normal_speed;
+    shear_force = shear_force + s.shear_velocity * c_shear;
+    twist += c_twist * s.twist_rate;
+    bend_moment = bend_moment + s.bend_rate * c_bend;
     // Each damper opposes its own rate, and takes c rate^2 from the motion.
-    out.loss_W = c_normal * normal_speed * normal_speed + c_shear * norm2(shear_velocity) +
-                 c_twist * twist_rate * twist_rate + c_bend * norm2(bend_rate);
+    out.loss_W = c_normal * s.normal_speed * s.normal_speed + c_shear * dot(s.shear_velocity, s.shear_velocity) +
+                 c_twist * s.twist_rate * s.twist_rate + c_bend * dot(s.bend_rate, s.bend_rate);
   }
-  out.force_on_i_N = n * normal_force + shear_force;
-  const Vec3 lever = cross(n, shear_force);
-  out.torque_on_i_N_m = n * twist + bend_moment + lever * arm_i;
-  out.torque_on_j_N_m = -(n * twist + bend_moment) + lever * arm_j;
+  const bond_kernel::BondForces<double> f =
+      bond_kernel::bond_forces(s.normal, normal_force, shear_force, twist, bend_moment, s.arm_i, s.arm_j);
+  out.force_on_i_N = vec(f.force_on_i);
+  out.torque_on_i_N_m = vec(f.torque_on_i);
+  out.torque_on_j_N_m = vec(f.torque_on_j);
   return out;
 }
 

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "contact/parallel_bond_kernel.hpp"
 #include "core/vec3.hpp"
 
 namespace regodem {
@@ -128,6 +129,11 @@ inline bool bond_holds(const BondLoads& loads, const BondSection& section, const
 
 /// Rotates v by the rotation vector phi (axis phi/|phi|, angle |phi|; Rodrigues).
 Vec3 rotate_by(const Vec3& v, const Vec3& phi);
+/// That rotation as the bond step takes it: v' = v c + (phi x v) s1 + phi (phi.v) c1 with
+/// c = cos a, s1 = sin(a)/a, c1 = (1 - cos a)/a^2, a = |phi|. The bond pass turns three
+/// vectors by one spin per bond per step, where a is tiny: below a^2 = 1e-4 the series
+/// (error a^8/9! < 1e-21) replaces sin, cos and the square root.
+bond_kernel::SeriesRotation<double> bond_spin_rotation(const bond_kernel::V3<double>& phi);
 /// The smallest rotation that takes unit vector a to unit vector b, applied to v.
 Vec3 rotate_between(const Vec3& v, const Vec3& a, const Vec3& b);
 
@@ -146,6 +152,12 @@ struct BondAction {
 /// The elastic energy a bond's loads store: F_n^2/(2 k_n A) + |F_s|^2/(2 k_s A) +
 /// M_t^2/(2 k_s J) + |M_b|^2/(2 k_n I), what it releases on breaking.
 double bond_elastic_energy_J(const BondParameters& p, const BondSection& section, const BondLoads& loads);
+
+/// update_bond's inputs as bond_kernel::bond_step takes them (the stiffnesses k_n A,
+/// k_s A, k_s J, k_n I of the kind and section).
+bond_kernel::BondStepInput<double> bond_step_input(const BondParameters& p, const BondSection& section,
+                                                   double rest_length_m, const BondKinematics& k,
+                                                   const Vec3& normal, const BondLoads& loads);
 
 /// One step of a bond: turns the stored loads with the pair (the mean spin of the two
 /// particles, then the remaining change of the normal), adds the increments of the

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <unordered_set>
 
+#include "contact/parallel_bond_batch.hpp"
 #include "core/error.hpp"
 #include "sim/simulation.hpp"
 
@@ -146,47 +147,85 @@ void Simulation::apply_bonds(double dt_s) {
   const ConductionPairParameters bond_conduction = geometric_radius_conduction(settings_.heat.time_scale_factor);
   int any_broken = 0;
 
+  // Undamped bonds (the paper's, and the default) take their step kLanes at a time, one
+  // bond per lane of a vector register (parallel_bond_batch.hpp). A lane's result does
+  // not depend on the bonds beside it, so neither does the run on the thread count.
+  // Damped kinds, and a lane whose spin angle is not small, go through update_bond one
+  // bond at a time (the two agree to round-off).
+  const bool in_lanes = std::none_of(bond_kinds_.begin(), bond_kinds_.end(),
+                                     [](const BondParameters& p) { return p.damping_ratio > 0.0; });
+  constexpr std::size_t lanes = bond_kernel::kLanes;
+  const std::size_t group_size = in_lanes ? lanes : 1;
+  const std::size_t groups = (nb + group_size - 1) / group_size;
+
+  BondLaneSource source;
+  source.position_m = x;
+  source.velocity_m_per_s = v;
+  source.angular_velocity_rad_per_s = w;
+  source.radius_m = radius;
+  source.bonds = &bonds_;
+  source.kinds = bond_kinds_.data();
+
 #pragma omp parallel for schedule(static) num_threads(threads) if (nb > 2048) reduction(max : any_broken)
-  for (std::size_t b = 0; b < nb; ++b) {
-    const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
-    const BondParameters& p = bond_kinds_[bonds_.kind[b]];
-    BondKinematics k;
-    k.position_i_m = x[i];
-    k.position_j_m = x[j];
-    k.velocity_i_m_per_s = v[i];
-    k.velocity_j_m_per_s = v[j];
-    k.angular_velocity_i_rad_per_s = w[i];
-    k.angular_velocity_j_rad_per_s = w[j];
-    k.radius_i_m = radius[i];
-    k.radius_j_m = radius[j];
-    const double inv_m = inv_mass[i] + inv_mass[j], inv_i = inv_inertia[i] + inv_inertia[j];
-    const BondSection& section = bonds_.section[b];
-    const BondLoads loads_before = bonds_.loads[b];
-    BondAction a = update_bond(p, section, bonds_.rest_length_m[b], k, dt_s, inv_m > 0.0 ? 1.0 / inv_m : 0.0,
-                               inv_i > 0.0 ? 1.0 / inv_i : 0.0, bonds_.normal[b], bonds_.loads[b]);
-    const BondBreak mode =
-        bond_holds(bonds_.loads[b], section, p) ? BondBreak::none : bond_failure(bond_stresses(bonds_.loads[b], section), p);
-    bonds_.broken[b] = static_cast<std::uint8_t>(mode);
-    double q = 0.0;
-    if (mode != BondBreak::none) {
-      // Gone for good: it acts no more, from this step on, and what it stored is lost
-      // over this step (docs/physics.md, "Energy audit"). The stretch grew over the step
-      // while the pair moved: the energy it had taken is that of mid-step, the mean of
-      // before and after (the end alone is one step's work too much).
-      a = {};
-      a.loss_W = 0.5 *
-                 (regodem::bond_elastic_energy_J(p, section, loads_before) +
-                  regodem::bond_elastic_energy_J(p, section, bonds_.loads[b])) /
-                 settings_.time_step_s;
-      any_broken = 1;
-    } else if (heat && p.conducts_heat) {
-      // The bond radius as a contact radius: G = 2 k_c R_b S.
-      q = contact_conductance_W_per_K(bond_conduction, harmonic_mean(conductivity[i], conductivity[j]),
-                                      section.radius_m) *
-          (temperature[j] - temperature[i]);
+  for (std::size_t g = 0; g < groups; ++g) {
+    const std::size_t first = g * group_size;
+    const int count = static_cast<int>(std::min(group_size, nb - first));
+    BondLaneStep step;
+    if (in_lanes)
+      step_bond_lanes(source, first, count, dt_s, step);
+    else
+      step.alone[0] = true;
+
+    for (int l = 0; l < count; ++l) {
+      const std::size_t b = first + static_cast<std::size_t>(l);
+      const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
+      const BondParameters& p = bond_kinds_[bonds_.kind[b]];
+      const BondSection& section = bonds_.section[b];
+      const BondLoads loads_before = bonds_.loads[b];
+      BondAction a;
+      if (step.alone[l]) {
+        BondKinematics k;
+        k.position_i_m = x[i];
+        k.position_j_m = x[j];
+        k.velocity_i_m_per_s = v[i];
+        k.velocity_j_m_per_s = v[j];
+        k.angular_velocity_i_rad_per_s = w[i];
+        k.angular_velocity_j_rad_per_s = w[j];
+        k.radius_i_m = radius[i];
+        k.radius_j_m = radius[j];
+        const double inv_m = inv_mass[i] + inv_mass[j], inv_i = inv_inertia[i] + inv_inertia[j];
+        a = update_bond(p, section, bonds_.rest_length_m[b], k, dt_s, inv_m > 0.0 ? 1.0 / inv_m : 0.0,
+                        inv_i > 0.0 ? 1.0 / inv_i : 0.0, bonds_.normal[b], bonds_.loads[b]);
+      } else {
+        bonds_.normal[b] = step.normal[l];
+        bonds_.loads[b] = step.loads[l];
+        a = step.action[l];
+      }
+      const BondBreak mode = bond_holds(bonds_.loads[b], section, p)
+                                 ? BondBreak::none
+                                 : bond_failure(bond_stresses(bonds_.loads[b], section), p);
+      bonds_.broken[b] = static_cast<std::uint8_t>(mode);
+      double q = 0.0;
+      if (mode != BondBreak::none) {
+        // Gone for good: it acts no more, from this step on, and what it stored is lost
+        // over this step (docs/physics.md, "Energy audit"). The stretch grew over the step
+        // while the pair moved: the energy it had taken is that of mid-step, the mean of
+        // before and after (the end alone is one step's work too much).
+        a = {};
+        a.loss_W = 0.5 *
+                   (regodem::bond_elastic_energy_J(p, section, loads_before) +
+                    regodem::bond_elastic_energy_J(p, section, bonds_.loads[b])) /
+                   settings_.time_step_s;
+        any_broken = 1;
+      } else if (heat && p.conducts_heat) {
+        // The bond radius as a contact radius: G = 2 k_c R_b S.
+        q = contact_conductance_W_per_K(bond_conduction, harmonic_mean(conductivity[i], conductivity[j]),
+                                        section.radius_m) *
+            (temperature[j] - temperature[i]);
+      }
+      bonds_.action[b] = a;
+      bonds_.heat_to_i_W[b] = q;
     }
-    bonds_.action[b] = a;
-    bonds_.heat_to_i_W[b] = q;
   }
 
   // Each particle sums its own bonds, in bond order.

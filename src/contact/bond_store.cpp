@@ -19,11 +19,29 @@ void BondStore::add(const ParticleStore& particles, std::uint32_t a, std::uint32
   const Vec3 d = particles.position_m[b] - particles.position_m[a];
   rest_length_m.push_back(norm(d));
   section.push_back(bond_section);
-  normal.push_back(normalized(d));
-  loads.push_back({});
+  resize_state(size());
+  set_state(size() - 1, normalized(d), {});
   action.push_back({});
   heat_to_i_W.push_back(0.0);
   broken.push_back(0);
+}
+
+void BondStore::set_state(std::size_t b, const Vec3& normal, const BondLoads& loads) {
+  state[normal_x][b] = normal.x;
+  state[normal_y][b] = normal.y;
+  state[normal_z][b] = normal.z;
+  state[normal_force][b] = loads.normal_force_N;
+  state[twist_moment][b] = loads.twist_moment_N_m;
+  state[shear_x][b] = loads.shear_force_N.x;
+  state[shear_y][b] = loads.shear_force_N.y;
+  state[shear_z][b] = loads.shear_force_N.z;
+  state[bend_x][b] = loads.bend_moment_N_m.x;
+  state[bend_y][b] = loads.bend_moment_N_m.y;
+  state[bend_z][b] = loads.bend_moment_N_m.z;
+}
+
+void BondStore::resize_state(std::size_t bonds) {
+  for (std::vector<double>& row : state) row.resize(bonds + kStatePadding, 0.0);
 }
 
 void BondStore::refresh_indices(const ParticleStore& particles) {
@@ -64,8 +82,7 @@ void BondStore::remove_broken(const ParticleStore& particles) {
     kind[kept] = kind[b];
     rest_length_m[kept] = rest_length_m[b];
     section[kept] = section[b];
-    normal[kept] = normal[b];
-    loads[kept] = loads[b];
+    for (std::vector<double>& row : state) row[kept] = row[b];
     action[kept] = action[b];
     heat_to_i_W[kept] = heat_to_i_W[b];
     broken[kept] = 0;
@@ -76,8 +93,7 @@ void BondStore::remove_broken(const ParticleStore& particles) {
   kind.resize(kept);
   rest_length_m.resize(kept);
   section.resize(kept);
-  normal.resize(kept);
-  loads.resize(kept);
+  resize_state(kept);
   action.resize(kept);
   heat_to_i_W.resize(kept);
   broken.resize(kept);
@@ -99,7 +115,7 @@ void BondStore::rebuild_per_particle(std::size_t particle_count) {
     ++bond_offset[local_j[b] + 1];
   }
   for (std::size_t p = 0; p < particle_count; ++p) bond_offset[p + 1] += bond_offset[p];
-  bond_entry.resize(2 * size());
+  bond_entry.assign(2 * size() + kEntryPadding, 0);
   std::vector<std::uint32_t> fill(bond_offset.begin(), bond_offset.end() - 1);
   for (std::size_t b = 0; b < size(); ++b) {
     bond_entry[fill[local_i[b]]++] = static_cast<std::uint32_t>(2 * b);

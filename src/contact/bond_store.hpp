@@ -5,6 +5,7 @@
 // its bonds (CSR) so that each
 // particle gathers its bonds' forces in a fixed order: parallel without races, and
 // deterministic for any thread count.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -39,20 +40,39 @@ class BondStore {
   std::vector<std::uint16_t> kind;           // index into the bond parameter table
   std::vector<double> rest_length_m;         // L0, the centre distance at formation
   std::vector<BondSection> section;
-  std::vector<Vec3> normal;                  // n of the last update, from i to j
-  std::vector<BondLoads> loads;
+  // The bond's state: the normal n of the last update (from i to j) and the loads, one
+  // array per component, so that the bond pass loads and stores a vector of bonds at
+  // once (contact/parallel_bond_batch.hpp). Each array holds size() + kStatePadding
+  // values: the pass's last vector may reach past the last bond.
+  enum StateRow : int {
+    normal_x, normal_y, normal_z, normal_force, twist_moment, shear_x, shear_y, shear_z, bend_x, bend_y, bend_z,
+    state_rows
+  };
+  static constexpr std::size_t kStatePadding = bond_kernel::kLanes;
+  static constexpr std::uint32_t kEntryPadding = 8;
+  std::array<std::vector<double>, state_rows> state;
   // Written by the bond pass, one per bond, then gathered per particle.
   std::vector<BondAction> action;
   std::vector<double> heat_to_i_W;           // conduction through the bond (0 when off)
   std::vector<std::uint8_t> broken;          // BondBreak of this step (none: intact)
 
   // Bonds of each local particle: entries bond_entry[bond_offset[p] .. bond_offset[p+1]),
-  // each 2 b + (0 when p is end i, 1 when end j), in bond order.
+  // each 2 b + (0 when p is end i, 1 when end j), in bond order; then kEntryPadding
+  // zeros, so that the gather may look that far ahead.
   std::vector<std::uint32_t> bond_offset;
   std::vector<std::uint32_t> bond_entry;
 
   std::size_t size() const { return id_i.size(); }
   bool empty() const { return id_i.empty(); }
+
+  Vec3 normal_of(std::size_t b) const { return {state[normal_x][b], state[normal_y][b], state[normal_z][b]}; }
+  BondLoads loads_of(std::size_t b) const {
+    return {state[normal_force][b], {state[shear_x][b], state[shear_y][b], state[shear_z][b]},
+            state[twist_moment][b], {state[bend_x][b], state[bend_y][b], state[bend_z][b]}};
+  }
+  void set_state(std::size_t b, const Vec3& normal, const BondLoads& loads);
+  /// Sizes the state arrays for `bonds` bonds (and the padding); new values are 0.
+  void resize_state(std::size_t bonds);
 
   /// Appends an unloaded bond between local particles a and b (sizes the scratch fields).
   void add(const ParticleStore& particles, std::uint32_t a, std::uint32_t b, std::uint16_t bond_kind,

@@ -1,5 +1,7 @@
 #include "contact/parallel_bond_batch.hpp"
 
+#include <cstring>
+
 namespace regodem {
 namespace {
 
@@ -7,78 +9,129 @@ using bond_kernel::BondLanes;
 using bond_kernel::kLanes;
 using bond_kernel::V3;
 
-Vec3 lane(const V3<BondLanes>& v, int l) { return {v.x[l], v.y[l], v.z[l]}; }
+BondLanes load(const double* row) {
+  BondLanes v;
+  std::memcpy(&v, row, sizeof v);
+  return v;
+}
+V3<BondLanes> load3(const double* row, std::size_t stride) {
+  return {load(row), load(row + stride), load(row + 2 * stride)};
+}
+void store(double* row, BondLanes v) { std::memcpy(row, &v, sizeof v); }
+void store3(double* row, std::size_t stride, const V3<BondLanes>& v) {
+  store(row, v.x);
+  store(row + stride, v.y);
+  store(row + 2 * stride, v.z);
+}
 
 }  // namespace
 
-void step_bond_lanes(const BondLaneSource& source, std::size_t first_bond, int count, double dt_s,
-                     BondLaneStep& out) {
-  const BondStore& bonds = *source.bonds;
-  // A short group repeats its first bond in the spare lanes (their results are dropped).
-  std::size_t bond[kLanes];
-  std::uint32_t end_i[kLanes], end_j[kLanes];
-  for (int l = 0; l < kLanes; ++l) {
-    bond[l] = first_bond + static_cast<std::size_t>(l < count ? l : 0);
-    end_i[l] = bonds.local_i[bond[l]];
-    end_j[l] = bonds.local_j[bond[l]];
+void step_bond_batch(const BondLaneSource& source, BondStore& bonds, std::size_t first_bond, int count, double dt_s,
+                     BondBatch& batch) {
+  using B = BondBatch;
+  using S = BondStore;
+  constexpr std::size_t stride = B::kBonds;
+  auto& in = batch.in_;
+  auto& out = batch.out_;
+  auto& old = batch.old_;
+
+  // 1. The particles' values and the bonds' constants, copied into the rows bond by bond.
+  const auto put3 = [&](int row, int k, const Vec3& v) {
+    in[row][k] = v.x;
+    in[row + 1][k] = v.y;
+    in[row + 2][k] = v.z;
+  };
+  // The particles of the bonds a few ahead are asked for early: a bond's ends lie
+  // anywhere in the particle arrays, and the copy would otherwise wait for each.
+  constexpr int kAhead = 8;
+  const std::size_t bond_count = bonds.size();
+  const auto prefetch_ends = [&](std::size_t b) {
+    for (std::uint32_t p : {bonds.local_i[b], bonds.local_j[b]}) {
+      __builtin_prefetch(&source.position_m[p]);
+      __builtin_prefetch(&source.velocity_m_per_s[p]);
+      __builtin_prefetch(&source.angular_velocity_rad_per_s[p]);
+    }
+  };
+  for (int k = 0; k < kAhead && first_bond + k < bond_count; ++k) prefetch_ends(first_bond + k);
+  for (int k = 0; k < count; ++k) {
+    const std::size_t b = first_bond + static_cast<std::size_t>(k);
+    if (b + kAhead < bond_count) prefetch_ends(b + kAhead);
+    const std::uint32_t i = bonds.local_i[b], j = bonds.local_j[b];
+    put3(B::position_i, k, source.position_m[i]);
+    put3(B::position_j, k, source.position_m[j]);
+    put3(B::velocity_i, k, source.velocity_m_per_s[i]);
+    put3(B::velocity_j, k, source.velocity_m_per_s[j]);
+    put3(B::spin_i, k, source.angular_velocity_rad_per_s[i]);
+    put3(B::spin_j, k, source.angular_velocity_rad_per_s[j]);
+    in[B::radius_i][k] = source.radius_m[i];
+    in[B::radius_j][k] = source.radius_m[j];
+    in[B::rest_length][k] = bonds.rest_length_m[b];
+    const BondParameters& kind = source.kinds[bonds.kind[b]];
+    const BondSection& section = bonds.section[b];
+    in[B::normal_stiffness][k] = kind.normal_stiffness_Pa_per_m * section.area_m2;
+    in[B::shear_stiffness][k] = kind.shear_stiffness_Pa_per_m * section.area_m2;
+    in[B::twist_stiffness][k] = kind.shear_stiffness_Pa_per_m * section.polar_inertia_m4;
+    in[B::bend_stiffness][k] = kind.normal_stiffness_Pa_per_m * section.inertia_m4;
   }
-  const auto pack = [&](auto value_of_lane) {
-    BondLanes r;
-    for (int l = 0; l < kLanes; ++l) r[l] = value_of_lane(l);
-    return r;
-  };
-  const auto pack3 = [&](const Vec3* array, const std::uint32_t* index) {
-    return V3<BondLanes>{pack([&](int l) { return array[index[l]].x; }), pack([&](int l) { return array[index[l]].y; }),
-                         pack([&](int l) { return array[index[l]].z; })};
-  };
-  const auto pack_bond3 = [&](auto vector_of_bond) {
-    return V3<BondLanes>{pack([&](int l) { return vector_of_bond(bond[l]).x; }),
-                         pack([&](int l) { return vector_of_bond(bond[l]).y; }),
-                         pack([&](int l) { return vector_of_bond(bond[l]).z; })};
-  };
+  // A short last vector repeats the batch's first bond's particles in its spare lanes,
+  // with the state of the store's padding; they are written back unchanged.
+  const int padded = (count + kLanes - 1) / kLanes * kLanes;
+  for (int row = 0; row < B::input_rows; ++row)
+    for (int k = count; k < padded; ++k) in[row][k] = in[row][0];
+  BondLanes lane_index;
+  for (int l = 0; l < kLanes; ++l) lane_index[l] = l;
 
-  // The inputs bond_step_input gives one bond, lane by lane.
-  bond_kernel::BondStepInput<BondLanes> in;
-  in.position_i = pack3(source.position_m, end_i);
-  in.position_j = pack3(source.position_m, end_j);
-  in.velocity_i = pack3(source.velocity_m_per_s, end_i);
-  in.velocity_j = pack3(source.velocity_m_per_s, end_j);
-  in.spin_i = pack3(source.angular_velocity_rad_per_s, end_i);
-  in.spin_j = pack3(source.angular_velocity_rad_per_s, end_j);
-  in.radius_i = pack([&](int l) { return source.radius_m[end_i[l]]; });
-  in.radius_j = pack([&](int l) { return source.radius_m[end_j[l]]; });
-  in.rest_length = pack([&](int l) { return bonds.rest_length_m[bond[l]]; });
-  in.normal = pack_bond3([&](std::size_t b) -> const Vec3& { return bonds.normal[b]; });
-  in.normal_force = pack([&](int l) { return bonds.loads[bond[l]].normal_force_N; });
-  in.twist_moment = pack([&](int l) { return bonds.loads[bond[l]].twist_moment_N_m; });
-  in.shear_force = pack_bond3([&](std::size_t b) -> const Vec3& { return bonds.loads[b].shear_force_N; });
-  in.bend_moment = pack_bond3([&](std::size_t b) -> const Vec3& { return bonds.loads[b].bend_moment_N_m; });
-  const auto kind = [&](int l) -> const BondParameters& { return source.kinds[bonds.kind[bond[l]]]; };
-  const auto section = [&](int l) -> const BondSection& { return bonds.section[bond[l]]; };
-  in.normal_stiffness = pack([&](int l) { return kind(l).normal_stiffness_Pa_per_m * section(l).area_m2; });
-  in.shear_stiffness = pack([&](int l) { return kind(l).shear_stiffness_Pa_per_m * section(l).area_m2; });
-  in.twist_stiffness = pack([&](int l) { return kind(l).shear_stiffness_Pa_per_m * section(l).polar_inertia_m4; });
-  in.bend_stiffness = pack([&](int l) { return kind(l).normal_stiffness_Pa_per_m * section(l).inertia_m4; });
+  // 2. The step, a vector of bonds at a time.
+  for (int first = 0; first < padded; first += kLanes) {
+    const auto row = [&](int r) { return &in[r][first]; };
+    double* state[S::state_rows];
+    for (int r = 0; r < S::state_rows; ++r) state[r] = bonds.state[r].data() + first_bond + first;
+    BondLanes before[S::state_rows];
+    for (int r = 0; r < S::state_rows; ++r) {
+      before[r] = load(state[r]);
+      store(&old[r][first], before[r]);
+    }
+    bond_kernel::BondStepInput<BondLanes> v;
+    v.position_i = load3(row(B::position_i), stride);
+    v.position_j = load3(row(B::position_j), stride);
+    v.velocity_i = load3(row(B::velocity_i), stride);
+    v.velocity_j = load3(row(B::velocity_j), stride);
+    v.spin_i = load3(row(B::spin_i), stride);
+    v.spin_j = load3(row(B::spin_j), stride);
+    v.radius_i = load(row(B::radius_i));
+    v.radius_j = load(row(B::radius_j));
+    v.rest_length = load(row(B::rest_length));
+    v.normal = {before[S::normal_x], before[S::normal_y], before[S::normal_z]};
+    v.normal_force = before[S::normal_force];
+    v.twist_moment = before[S::twist_moment];
+    v.shear_force = {before[S::shear_x], before[S::shear_y], before[S::shear_z]};
+    v.bend_moment = {before[S::bend_x], before[S::bend_y], before[S::bend_z]};
+    v.normal_stiffness = load(row(B::normal_stiffness));
+    v.shear_stiffness = load(row(B::shear_stiffness));
+    v.twist_stiffness = load(row(B::twist_stiffness));
+    v.bend_stiffness = load(row(B::bend_stiffness));
 
-  // The pair's mean spin over the step, in its series form (bond_spin_rotation); a lane
-  // past the series' range is flagged.
-  const V3<BondLanes> phi = (in.spin_i + in.spin_j) * (BondLanes{} + 0.5 * dt_s);
-  const BondLanes angle2 = bond_kernel::dot(phi, phi);
-  const bond_kernel::BondStepOutput<BondLanes> s = bond_kernel::bond_step(in, bond_kernel::series_rotation(phi), dt_s);
-  const bond_kernel::BondForces<BondLanes> f = bond_kernel::bond_forces(
-      s.normal, s.normal_force, s.shear_force, s.twist_moment, s.bend_moment, s.arm_i, s.arm_j);
+    // The pair's mean spin over the step, in its series form (bond_spin_rotation); a
+    // lane past the series' range is flagged by its angle^2.
+    const V3<BondLanes> phi = (v.spin_i + v.spin_j) * (BondLanes{} + 0.5 * dt_s);
+    const BondLanes angle2 = bond_kernel::dot(phi, phi);
+    const bond_kernel::BondStepOutput<BondLanes> s =
+        bond_kernel::bond_step(v, bond_kernel::series_rotation(phi), dt_s);
+    const bond_kernel::BondForces<BondLanes> f = bond_kernel::bond_forces(
+        s.normal, s.normal_force, s.shear_force, s.twist_moment, s.bend_moment, s.arm_i, s.arm_j);
 
-  for (int l = 0; l < count; ++l) {
-    out.alone[l] = !(angle2[l] < bond_kernel::kSeriesLimit);
-    out.normal[l] = lane(s.normal, l);
-    out.loads[l].normal_force_N = s.normal_force[l];
-    out.loads[l].shear_force_N = lane(s.shear_force, l);
-    out.loads[l].twist_moment_N_m = s.twist_moment[l];
-    out.loads[l].bend_moment_N_m = lane(s.bend_moment, l);
-    out.action[l].force_on_i_N = lane(f.force_on_i, l);
-    out.action[l].torque_on_i_N_m = lane(f.torque_on_i, l);
-    out.action[l].torque_on_j_N_m = lane(f.torque_on_j, l);
-    out.action[l].loss_W = 0.0;
+    // The new state where the lane is a bond of the batch and in the series' range.
+    const bond_kernel::LaneMask update = (angle2 < bond_kernel::kSeriesLimit) & (lane_index + first < count);
+    const BondLanes after[S::state_rows] = {s.normal.x,      s.normal.y,      s.normal.z,      s.normal_force,
+                                            s.twist_moment,  s.shear_force.x, s.shear_force.y, s.shear_force.z,
+                                            s.bend_moment.x, s.bend_moment.y, s.bend_moment.z};
+    for (int r = 0; r < S::state_rows; ++r) store(state[r], bond_kernel::lane_select(update, after[r], before[r]));
+
+    const auto result = [&](int r) { return &out[r][first]; };
+    store(result(B::spin_angle2), angle2);
+    store3(result(B::force_on_i), stride, f.force_on_i);
+    store3(result(B::torque_on_i), stride, f.torque_on_i);
+    store3(result(B::torque_on_j), stride, f.torque_on_j);
   }
 }
 

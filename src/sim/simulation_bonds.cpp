@@ -128,7 +128,7 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
 double Simulation::bond_elastic_energy_J() const {
   double sum = 0.0;
   for (std::size_t b = 0; b < bonds_.size(); ++b)
-    sum += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads[b]);
+    sum += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
   return sum;
 }
 
@@ -147,84 +147,84 @@ void Simulation::apply_bonds(double dt_s) {
   const ConductionPairParameters bond_conduction = geometric_radius_conduction(settings_.heat.time_scale_factor);
   int any_broken = 0;
 
-  // Undamped bonds (the paper's, and the default) take their step kLanes at a time, one
-  // bond per lane of a vector register (parallel_bond_batch.hpp). A lane's result does
-  // not depend on the bonds beside it, so neither does the run on the thread count.
-  // Damped kinds, and a lane whose spin angle is not small, go through update_bond one
+  // Undamped bonds (the paper's, and the default) take their step in batches, a vector
+  // of bonds at a time, one bond per lane (parallel_bond_batch.hpp). A lane's result
+  // does not depend on the bonds beside it, so neither does the run on the thread count.
+  // Damped kinds, and a bond whose spin angle is not small, go through update_bond one
   // bond at a time (the two agree to round-off).
   const bool in_lanes = std::none_of(bond_kinds_.begin(), bond_kinds_.end(),
                                      [](const BondParameters& p) { return p.damping_ratio > 0.0; });
-  constexpr std::size_t lanes = bond_kernel::kLanes;
-  const std::size_t group_size = in_lanes ? lanes : 1;
-  const std::size_t groups = (nb + group_size - 1) / group_size;
+  constexpr std::size_t batch_size = BondBatch::kBonds;
+  const std::size_t batches = (nb + batch_size - 1) / batch_size;
 
   BondLaneSource source;
   source.position_m = x;
   source.velocity_m_per_s = v;
   source.angular_velocity_rad_per_s = w;
   source.radius_m = radius;
-  source.bonds = &bonds_;
   source.kinds = bond_kinds_.data();
 
-#pragma omp parallel for schedule(static) num_threads(threads) if (nb > 2048) reduction(max : any_broken)
-  for (std::size_t g = 0; g < groups; ++g) {
-    const std::size_t first = g * group_size;
-    const int count = static_cast<int>(std::min(group_size, nb - first));
-    BondLaneStep step;
-    if (in_lanes)
-      step_bond_lanes(source, first, count, dt_s, step);
-    else
-      step.alone[0] = true;
+#pragma omp parallel num_threads(threads) if (nb > 2048) reduction(max : any_broken)
+  {
+    BondBatch batch;
+#pragma omp for schedule(static)
+    for (std::size_t g = 0; g < batches; ++g) {
+      const std::size_t first = g * batch_size;
+      const int count = static_cast<int>(std::min(batch_size, nb - first));
+      if (in_lanes) step_bond_batch(source, bonds_, first, count, dt_s, batch);
 
-    for (int l = 0; l < count; ++l) {
-      const std::size_t b = first + static_cast<std::size_t>(l);
-      const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
-      const BondParameters& p = bond_kinds_[bonds_.kind[b]];
-      const BondSection& section = bonds_.section[b];
-      const BondLoads loads_before = bonds_.loads[b];
-      BondAction a;
-      if (step.alone[l]) {
-        BondKinematics k;
-        k.position_i_m = x[i];
-        k.position_j_m = x[j];
-        k.velocity_i_m_per_s = v[i];
-        k.velocity_j_m_per_s = v[j];
-        k.angular_velocity_i_rad_per_s = w[i];
-        k.angular_velocity_j_rad_per_s = w[j];
-        k.radius_i_m = radius[i];
-        k.radius_j_m = radius[j];
-        const double inv_m = inv_mass[i] + inv_mass[j], inv_i = inv_inertia[i] + inv_inertia[j];
-        a = update_bond(p, section, bonds_.rest_length_m[b], k, dt_s, inv_m > 0.0 ? 1.0 / inv_m : 0.0,
-                        inv_i > 0.0 ? 1.0 / inv_i : 0.0, bonds_.normal[b], bonds_.loads[b]);
-      } else {
-        bonds_.normal[b] = step.normal[l];
-        bonds_.loads[b] = step.loads[l];
-        a = step.action[l];
+      for (int l = 0; l < count; ++l) {
+        const std::size_t b = first + static_cast<std::size_t>(l);
+        const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
+        const BondParameters& p = bond_kinds_[bonds_.kind[b]];
+        const BondSection& section = bonds_.section[b];
+        const bool alone = !in_lanes || batch.alone(l);
+        const BondLoads loads_before = alone ? bonds_.loads_of(b) : batch.loads_before(l);
+        BondAction a;
+        if (alone) {
+          BondKinematics k;
+          k.position_i_m = x[i];
+          k.position_j_m = x[j];
+          k.velocity_i_m_per_s = v[i];
+          k.velocity_j_m_per_s = v[j];
+          k.angular_velocity_i_rad_per_s = w[i];
+          k.angular_velocity_j_rad_per_s = w[j];
+          k.radius_i_m = radius[i];
+          k.radius_j_m = radius[j];
+          const double inv_m = inv_mass[i] + inv_mass[j], inv_i = inv_inertia[i] + inv_inertia[j];
+          Vec3 normal = bonds_.normal_of(b);
+          BondLoads loads = loads_before;
+          a = update_bond(p, section, bonds_.rest_length_m[b], k, dt_s, inv_m > 0.0 ? 1.0 / inv_m : 0.0,
+                          inv_i > 0.0 ? 1.0 / inv_i : 0.0, normal, loads);
+          bonds_.set_state(b, normal, loads);
+        } else {
+          a = batch.action(l);
+        }
+        const BondLoads loads = bonds_.loads_of(b);
+        const BondBreak mode =
+            bond_holds(loads, section, p) ? BondBreak::none : bond_failure(bond_stresses(loads, section), p);
+        bonds_.broken[b] = static_cast<std::uint8_t>(mode);
+        double q = 0.0;
+        if (mode != BondBreak::none) {
+          // Gone for good: it acts no more, from this step on, and what it stored is lost
+          // over this step (docs/physics.md, "Energy audit"). The stretch grew over the step
+          // while the pair moved: the energy it had taken is that of mid-step, the mean of
+          // before and after (the end alone is one step's work too much).
+          a = {};
+          a.loss_W = 0.5 *
+                     (regodem::bond_elastic_energy_J(p, section, loads_before) +
+                      regodem::bond_elastic_energy_J(p, section, loads)) /
+                     settings_.time_step_s;
+          any_broken = 1;
+        } else if (heat && p.conducts_heat) {
+          // The bond radius as a contact radius: G = 2 k_c R_b S.
+          q = contact_conductance_W_per_K(bond_conduction, harmonic_mean(conductivity[i], conductivity[j]),
+                                          section.radius_m) *
+              (temperature[j] - temperature[i]);
+        }
+        bonds_.action[b] = a;
+        bonds_.heat_to_i_W[b] = q;
       }
-      const BondBreak mode = bond_holds(bonds_.loads[b], section, p)
-                                 ? BondBreak::none
-                                 : bond_failure(bond_stresses(bonds_.loads[b], section), p);
-      bonds_.broken[b] = static_cast<std::uint8_t>(mode);
-      double q = 0.0;
-      if (mode != BondBreak::none) {
-        // Gone for good: it acts no more, from this step on, and what it stored is lost
-        // over this step (docs/physics.md, "Energy audit"). The stretch grew over the step
-        // while the pair moved: the energy it had taken is that of mid-step, the mean of
-        // before and after (the end alone is one step's work too much).
-        a = {};
-        a.loss_W = 0.5 *
-                   (regodem::bond_elastic_energy_J(p, section, loads_before) +
-                    regodem::bond_elastic_energy_J(p, section, bonds_.loads[b])) /
-                   settings_.time_step_s;
-        any_broken = 1;
-      } else if (heat && p.conducts_heat) {
-        // The bond radius as a contact radius: G = 2 k_c R_b S.
-        q = contact_conductance_W_per_K(bond_conduction, harmonic_mean(conductivity[i], conductivity[j]),
-                                        section.radius_m) *
-            (temperature[j] - temperature[i]);
-      }
-      bonds_.action[b] = a;
-      bonds_.heat_to_i_W[b] = q;
     }
   }
 
@@ -247,12 +247,16 @@ void Simulation::apply_bonds(double dt_s) {
   const double* __restrict weight = partition_weight_.data();
   BlockEnergy* __restrict block_energy = block_energy_.data();
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
+  constexpr std::uint32_t kGatherAhead = BondStore::kEntryPadding;
   // Chunks of one block each: a block's sums are one thread's, in particle order.
 #pragma omp parallel for schedule(static, block_size) num_threads(threads) if (n > 4096)
   for (std::size_t q = 0; q < n; ++q) {
     Vec3 f, t;
     double h = 0.0, loss = 0.0, generated = 0.0;
+    // The actions of the entries a few ahead are asked for early (a bond's j end reads
+    // an action far from its neighbours'); the entry list has padding for this.
     for (std::uint32_t e = offset[q]; e < offset[q + 1]; ++e) {
+      __builtin_prefetch(&action[entry[e + kGatherAhead] >> 1]);
       const std::uint32_t b = entry[e] >> 1;
       const bool is_i = (entry[e] & 1u) == 0;
       if (is_i) {
@@ -285,9 +289,9 @@ void Simulation::apply_bonds(double dt_s) {
   for (std::size_t b = 0; b < nb; ++b) {
     if (!bonds_.broken[b]) continue;
     const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
-    const Vec3 n_ij = bonds_.normal[b];
+    const Vec3 n_ij = bonds_.normal_of(b);
     const double length = norm(x[j] - x[i]);
-    const BondStresses s = bond_stresses(bonds_.loads[b], bonds_.section[b]);
+    const BondStresses s = bond_stresses(bonds_.loads_of(b), bonds_.section[b]);
     BondBreakEvent e;
     e.time_s = time_s_;
     e.position_m = x[i] + n_ij * (0.5 * (length + radius[i] - radius[j]));

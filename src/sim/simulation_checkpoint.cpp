@@ -88,8 +88,8 @@ void save_bonds(ByteWriter& w, const BondStore& b, const BondCounts& counts, con
     for (double v : {s.radius_m, s.area_m2, s.inertia_m4, s.polar_inertia_m4, s.inv_area_per_m2,
                      s.radius_over_inertia_per_m3, s.radius_over_polar_inertia_per_m3})
       w.put(v);
-    put(w, b.normal[k]);
-    const BondLoads& l = b.loads[k];
+    put(w, b.normal_of(k));
+    const BondLoads l = b.loads_of(k);
     w.put(l.normal_force_N);
     put(w, l.shear_force_N);
     w.put(l.twist_moment_N_m);
@@ -125,20 +125,20 @@ void load_bonds(ByteReader& r, BondStore& b, BondCounts& counts, std::vector<Bon
   if (n != b.id_i.size() || n != b.id_j.size() || n != b.kind.size() || n != b.rest_length_m.size())
     r.fail("the bond arrays differ in length");
   b.section.assign(n, {});
-  b.normal.assign(n, {});
-  b.loads.assign(n, {});
+  b.resize_state(n);
   b.action.assign(n, {});
   for (std::size_t k = 0; k < n; ++k) {
     BondSection& s = b.section[k];
     for (double* v : {&s.radius_m, &s.area_m2, &s.inertia_m4, &s.polar_inertia_m4, &s.inv_area_per_m2,
                       &s.radius_over_inertia_per_m3, &s.radius_over_polar_inertia_per_m3})
       r.get(*v);
-    b.normal[k] = get_vec3(r);
-    BondLoads& l = b.loads[k];
+    const Vec3 normal = get_vec3(r);
+    BondLoads l;
     r.get(l.normal_force_N);
     l.shear_force_N = get_vec3(r);
     r.get(l.twist_moment_N_m);
     l.bend_moment_N_m = get_vec3(r);
+    b.set_state(k, normal, l);
     BondAction& a = b.action[k];
     a.force_on_i_N = get_vec3(r);
     a.torque_on_i_N_m = get_vec3(r);

@@ -66,8 +66,8 @@ void expect_identical(const Simulation& a, const Simulation& b) {
   EXPECT_EQ(a.bonds().id_i, b.bonds().id_i);
   EXPECT_EQ(a.bond_counts().broken(), b.bond_counts().broken());
   for (std::size_t k = 0; k < a.bonds().size(); ++k) {
-    ASSERT_EQ(a.bonds().loads[k].normal_force_N, b.bonds().loads[k].normal_force_N) << "bond " << k;
-    ASSERT_EQ(a.bonds().loads[k].shear_force_N, b.bonds().loads[k].shear_force_N) << "bond " << k;
+    ASSERT_EQ(a.bonds().loads_of(k).normal_force_N, b.bonds().loads_of(k).normal_force_N) << "bond " << k;
+    ASSERT_EQ(a.bonds().loads_of(k).shear_force_N, b.bonds().loads_of(k).shear_force_N) << "bond " << k;
   }
   EXPECT_EQ(a.thermal_ledger().boundary_heat_in_J, b.thermal_ledger().boundary_heat_in_J);
   EXPECT_EQ(a.thermal_ledger().generated_heat_J, b.thermal_ledger().generated_heat_J);

@@ -1,5 +1,5 @@
 // The batched bond step (src/contact/parallel_bond_batch.hpp) against the one-bond law
-// (update_bond), and against itself in other lanes. Both are one source (bond_kernel)
+// (update_bond), and against itself in other lanes and batch positions. Both are one source (bond_kernel)
 // compiled for two lane types; the compiler may fuse a multiply and an add in one and
 // not the other, so they agree to round-off, not to the bit: 1e-12 of each vector's
 // magnitude (a fused operation moves one rounding, 1e-16 of a term; a wrong formula
@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -77,8 +78,16 @@ void expect_round_off(const Vec3& a, const Vec3& b, const char* what, int draw) 
   EXPECT_NEAR(a.z, b.z, tol) << what << " of draw " << draw;
 }
 
-// The bonds as the pass holds them: particle 2l and 2l + 1 are bond l's ends.
-BondLaneStep step_lanes(const DrawnBond* bonds, int count, double dt) {
+// What the batch gives one bond.
+struct BatchResult {
+  Vec3 normal;
+  BondLoads loads;
+  BondAction action;
+  bool alone = false;
+};
+
+// The bonds as the pass holds them: particle 2k and 2k + 1 are bond k's ends.
+std::vector<BatchResult> step_batch(const DrawnBond* bonds, int count, double dt) {
   std::vector<Vec3> position, velocity, spin;
   std::vector<double> radius;
   std::vector<BondParameters> kinds;
@@ -95,25 +104,35 @@ BondLaneStep step_lanes(const DrawnBond* bonds, int count, double dt) {
     store.kind.push_back(static_cast<std::uint16_t>(l));
     store.rest_length_m.push_back(bonds[l].rest_length_m);
     store.section.push_back(bonds[l].section);
-    store.normal.push_back(bonds[l].normal);
-    store.loads.push_back(bonds[l].loads);
   }
+  store.resize_state(static_cast<std::size_t>(count));
+  for (int l = 0; l < count; ++l) store.set_state(static_cast<std::size_t>(l), bonds[l].normal, bonds[l].loads);
   BondLaneSource source;
   source.position_m = position.data();
   source.velocity_m_per_s = velocity.data();
   source.angular_velocity_rad_per_s = spin.data();
   source.radius_m = radius.data();
-  source.bonds = &store;
   source.kinds = kinds.data();
-  BondLaneStep step;
-  step_bond_lanes(source, 0, count, dt, step);
-  return step;
+  auto batch = std::make_unique<BondBatch>();
+  step_bond_batch(source, store, 0, count, dt, *batch);
+  std::vector<BatchResult> results(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    results[k] = {store.normal_of(k), store.loads_of(k), batch->action(k), batch->alone(k)};
+    EXPECT_TRUE(same_bits(batch->loads_before(k).twist_moment_N_m, bonds[k].loads.twist_moment_N_m) &&
+                same_bits(batch->loads_before(k).bend_moment_N_m, bonds[k].loads.bend_moment_N_m));
+    // A bond flagged alone is left as it was.
+    if (results[k].alone) {
+      EXPECT_TRUE(same_bits(results[k].normal, bonds[k].normal) &&
+                  same_bits(results[k].loads.shear_force_N, bonds[k].loads.shear_force_N));
+    }
+  }
+  return results;
 }
 
-// Runs `count` bonds through the lanes and each through update_bond; returns how many
-// lanes were compared (not flagged alone).
+// Runs `count` bonds through a batch and each through update_bond; returns how many
+// were compared (not flagged alone).
 int compare_group(DrawnBond* bonds, int count, double dt, int draw) {
-  const BondLaneStep step = step_lanes(bonds, count, dt);
+  const std::vector<BatchResult> step = step_batch(bonds, count, dt);
   int compared = 0;
   for (int l = 0; l < count; ++l) {
     DrawnBond alone = bonds[l];
@@ -121,21 +140,21 @@ int compare_group(DrawnBond* bonds, int count, double dt, int draw) {
                                      1.0, alone.normal, alone.loads);
     const Vec3 phi = (alone.kinematics.angular_velocity_i_rad_per_s + alone.kinematics.angular_velocity_j_rad_per_s) *
                      (0.5 * dt);
-    EXPECT_EQ(step.alone[l], !(norm2(phi) < bond_kernel::kSeriesLimit)) << "draw " << draw << " lane " << l;
-    if (step.alone[l]) continue;
+    EXPECT_EQ(step[l].alone, !(norm2(phi) < bond_kernel::kSeriesLimit)) << "draw " << draw << " lane " << l;
+    if (step[l].alone) continue;
     ++compared;
-    expect_round_off(step.normal[l], alone.normal, "normal", draw);
+    expect_round_off(step[l].normal, alone.normal, "normal", draw);
     const double force_scale = std::abs(alone.loads.normal_force_N) + norm(alone.loads.shear_force_N);
-    EXPECT_NEAR(step.loads[l].normal_force_N, alone.loads.normal_force_N, kRoundOff * force_scale) << "draw " << draw;
-    EXPECT_NEAR(step.loads[l].twist_moment_N_m, alone.loads.twist_moment_N_m,
+    EXPECT_NEAR(step[l].loads.normal_force_N, alone.loads.normal_force_N, kRoundOff * force_scale) << "draw " << draw;
+    EXPECT_NEAR(step[l].loads.twist_moment_N_m, alone.loads.twist_moment_N_m,
                 kRoundOff * std::abs(alone.loads.twist_moment_N_m))
         << "draw " << draw;
-    expect_round_off(step.loads[l].shear_force_N, alone.loads.shear_force_N, "shear force", draw);
-    expect_round_off(step.loads[l].bend_moment_N_m, alone.loads.bend_moment_N_m, "bending moment", draw);
-    expect_round_off(step.action[l].force_on_i_N, a.force_on_i_N, "force on i", draw);
-    expect_round_off(step.action[l].torque_on_i_N_m, a.torque_on_i_N_m, "torque on i", draw);
-    expect_round_off(step.action[l].torque_on_j_N_m, a.torque_on_j_N_m, "torque on j", draw);
-    EXPECT_EQ(step.action[l].loss_W, 0.0);
+    expect_round_off(step[l].loads.shear_force_N, alone.loads.shear_force_N, "shear force", draw);
+    expect_round_off(step[l].loads.bend_moment_N_m, alone.loads.bend_moment_N_m, "bending moment", draw);
+    expect_round_off(step[l].action.force_on_i_N, a.force_on_i_N, "force on i", draw);
+    expect_round_off(step[l].action.torque_on_i_N_m, a.torque_on_i_N_m, "torque on i", draw);
+    expect_round_off(step[l].action.torque_on_j_N_m, a.torque_on_j_N_m, "torque on j", draw);
+    EXPECT_EQ(step[l].action.loss_W, 0.0);
   }
   return compared;
 }
@@ -144,12 +163,11 @@ TEST(ParallelBondBatch, EveryLaneAgreesWithTheOneBondLaw) {
   Rng rng(42);
   const double dt = 1e-6;
   int compared = 0, alone = 0;
-  for (int draw = 0; draw < 4000; ++draw) {
-    DrawnBond bonds[kLanes];
-    // Mostly small spins; one group in ten spins past the series (those lanes go alone).
-    const double spin = draw % 10 == 0 ? 3e4 : 2e3;
-    for (DrawnBond& b : bonds) b = draw_bond(rng, spin);
-    const int count = 1 + draw % kLanes;  // full and short groups
+  for (int draw = 0; draw < 500; ++draw) {
+    DrawnBond bonds[BondBatch::kBonds];
+    // Mostly small spins; one bond in ten spins past the series (it goes alone).
+    for (int k = 0; k < BondBatch::kBonds; ++k) bonds[k] = draw_bond(rng, (draw + k) % 10 == 0 ? 3e4 : 2e3);
+    const int count = 1 + (draw * 7) % BondBatch::kBonds;  // full and short batches and groups
     const int c = compare_group(bonds, count, dt, draw);
     compared += c;
     alone += count - c;
@@ -176,27 +194,29 @@ TEST(ParallelBondBatch, AHalfTurnAndARestingPairAgreeWithTheOneBondLaw) {
 TEST(ParallelBondBatch, ABondsResultDoesNotDependOnItsLaneOrTheBondsBesideIt) {
   Rng rng(99);
   const double dt = 1e-6;
-  for (int draw = 0; draw < 500; ++draw) {
+  // Every lane, in the first and the last vector of a batch, full and short batches.
+  std::vector<int> places;
+  for (int l = 0; l < kLanes; ++l) places.insert(places.end(), {l, BondBatch::kBonds - kLanes + l});
+  for (int draw = 0; draw < 200; ++draw) {
     const DrawnBond bond = draw_bond(rng, 2e3);
-    DrawnBond first[kLanes];
-    first[0] = bond;
-    const BondLaneStep reference = step_lanes(first, 1, dt);  // alone in a short group
-    ASSERT_FALSE(reference.alone[0]);
-    for (int lane = 0; lane < kLanes; ++lane) {
-      DrawnBond group[kLanes];
-      for (DrawnBond& other : group) other = draw_bond(rng, 2e3);
-      group[lane] = bond;
-      const BondLaneStep step = step_lanes(group, kLanes, dt);
-      EXPECT_TRUE(same_bits(step.normal[lane], reference.normal[0])) << "draw " << draw << " lane " << lane;
-      EXPECT_TRUE(same_bits(step.loads[lane].normal_force_N, reference.loads[0].normal_force_N) &&
-                  same_bits(step.loads[lane].twist_moment_N_m, reference.loads[0].twist_moment_N_m) &&
-                  same_bits(step.loads[lane].shear_force_N, reference.loads[0].shear_force_N) &&
-                  same_bits(step.loads[lane].bend_moment_N_m, reference.loads[0].bend_moment_N_m))
-          << "draw " << draw << " lane " << lane;
-      EXPECT_TRUE(same_bits(step.action[lane].force_on_i_N, reference.action[0].force_on_i_N) &&
-                  same_bits(step.action[lane].torque_on_i_N_m, reference.action[0].torque_on_i_N_m) &&
-                  same_bits(step.action[lane].torque_on_j_N_m, reference.action[0].torque_on_j_N_m))
-          << "draw " << draw << " lane " << lane;
+    const BatchResult reference = step_batch(&bond, 1, dt)[0];  // alone in a short batch
+    ASSERT_FALSE(reference.alone);
+    for (int place : places) {
+      DrawnBond batch[BondBatch::kBonds];
+      for (DrawnBond& other : batch) other = draw_bond(rng, 2e3);
+      batch[place] = bond;
+      const int count = draw % 2 == 0 ? BondBatch::kBonds : place + 1;
+      const BatchResult step = step_batch(batch, count, dt)[static_cast<std::size_t>(place)];
+      EXPECT_TRUE(same_bits(step.normal, reference.normal)) << "draw " << draw << " place " << place;
+      EXPECT_TRUE(same_bits(step.loads.normal_force_N, reference.loads.normal_force_N) &&
+                  same_bits(step.loads.twist_moment_N_m, reference.loads.twist_moment_N_m) &&
+                  same_bits(step.loads.shear_force_N, reference.loads.shear_force_N) &&
+                  same_bits(step.loads.bend_moment_N_m, reference.loads.bend_moment_N_m))
+          << "draw " << draw << " place " << place;
+      EXPECT_TRUE(same_bits(step.action.force_on_i_N, reference.action.force_on_i_N) &&
+                  same_bits(step.action.torque_on_i_N_m, reference.action.torque_on_i_N_m) &&
+                  same_bits(step.action.torque_on_j_N_m, reference.action.torque_on_j_N_m))
+          << "draw " << draw << " place " << place;
     }
   }
 }

@@ -14,4 +14,5 @@ $SUDO apt-get install -y -q --no-install-recommends \
   libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev libeigen3-dev nlohmann-json3-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   zlib1g-dev python3-vtk9 python3-matplotlib python3-numpy \
-  python3-dev pybind11-dev python3-pytest python3-pandas
+  python3-dev pybind11-dev python3-pytest python3-pandas \
+  libopenmpi-dev openmpi-bin

@@ -1,0 +1,58 @@
+#include "parallel/mpi/communicator.hpp"
+
+#include <fmt/format.h>
+
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace regodem {
+
+Communicator::Communicator(MPI_Comm comm) : comm_(comm) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+}
+
+std::vector<std::vector<std::byte>> Communicator::exchange(const std::vector<std::vector<std::byte>>& to_rank) const {
+  const auto ranks = static_cast<std::size_t>(size_);
+  if (to_rank.size() != ranks)
+    throw SimulationError(fmt::format("messages for {} ranks, the run has {}", to_rank.size(), ranks));
+  // MPI counts are int: a message of 2 GiB or more would need to be split.
+  const auto as_count = [](std::size_t bytes) {
+    if (bytes > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw SimulationError(fmt::format("a message of {} bytes between ranks is larger than MPI's int counts", bytes));
+    return static_cast<int>(bytes);
+  };
+  std::vector<int> send_counts(ranks), send_offsets(ranks), receive_counts(ranks), receive_offsets(ranks);
+  std::size_t send_total = 0;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    send_counts[r] = r == static_cast<std::size_t>(rank_) ? 0 : as_count(to_rank[r].size());
+    send_offsets[r] = as_count(send_total);
+    send_total += static_cast<std::size_t>(send_counts[r]);
+  }
+  MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, comm_);
+  std::size_t receive_total = 0;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    receive_offsets[r] = as_count(receive_total);
+    receive_total += static_cast<std::size_t>(receive_counts[r]);
+  }
+  std::vector<std::byte> send(send_total), receive(receive_total);
+  for (std::size_t r = 0; r < ranks; ++r)
+    if (send_counts[r] > 0)
+      std::copy(to_rank[r].begin(), to_rank[r].end(), send.begin() + send_offsets[r]);
+  MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, receive.data(), receive_counts.data(),
+                receive_offsets.data(), MPI_BYTE, comm_);
+  std::vector<std::vector<std::byte>> from_rank(ranks);
+  for (std::size_t r = 0; r < ranks; ++r)
+    from_rank[r].assign(receive.begin() + receive_offsets[r],
+                        receive.begin() + receive_offsets[r] + receive_counts[r]);
+  return from_rank;
+}
+
+std::uint64_t Communicator::sum(std::uint64_t value) const {
+  std::uint64_t total = 0;
+  MPI_Allreduce(&value, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
+  return total;
+}
+
+}  // namespace regodem

@@ -1,0 +1,30 @@
+#pragma once
+// The ranks of a run over MPI (issue 19), as the rest of the code needs them: who am I,
+// how many are we, and messages of bytes to every other rank at once. Only this folder
+// includes mpi.h, and only the `regodem_mpi` library is built from it (where CMake finds
+// MPI), so the engine builds and runs without MPI.
+#include <mpi.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace regodem {
+
+class Communicator {
+ public:
+  explicit Communicator(MPI_Comm comm = MPI_COMM_WORLD);
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  /// Sends to_rank[r] to each rank r (to_rank has size() entries; this rank's own is
+  /// not sent) and returns what each rank sent to this one, by rank.
+  std::vector<std::vector<std::byte>> exchange(const std::vector<std::vector<std::byte>>& to_rank) const;
+  /// The sum over the ranks.
+  std::uint64_t sum(std::uint64_t value) const;
+
+ private:
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace regodem

@@ -1,0 +1,65 @@
+#include "parallel/mpi/particle_exchange.hpp"
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "parallel/particle_transfer.hpp"
+
+namespace regodem {
+namespace {
+
+// For each rank, the particles its list names.
+std::vector<std::vector<std::byte>> pack_lists(ParticleStore& from, const std::vector<std::vector<std::uint32_t>>& to_rank,
+                                               ParticleTransfer kind) {
+  std::vector<std::vector<std::byte>> messages(to_rank.size());
+  for (std::size_t r = 0; r < to_rank.size(); ++r)
+    if (!to_rank[r].empty()) pack_particles(from, to_rank[r], kind, messages[r]);
+  return messages;
+}
+
+// Appends the particles of each rank's message to `into`, by sending rank.
+void unpack_messages(const std::vector<std::vector<std::byte>>& received, ParticleTransfer kind, ParticleStore& into) {
+  for (const std::vector<std::byte>& message : received) {
+    if (message.empty()) continue;
+    const std::size_t used = unpack_particles(message, kind, into);
+    if (used != message.size())
+      throw SimulationError(fmt::format("a particle message of {} bytes held {} more", message.size(),
+                                        message.size() - used));
+  }
+}
+
+}  // namespace
+
+std::size_t migrate_particles(ParticleStore& local, const RecursiveBisection& bricks, const Communicator& comm) {
+  if (bricks.ranks() != comm.size())
+    throw SimulationError(fmt::format("{} bricks for {} ranks", bricks.ranks(), comm.size()));
+  std::vector<std::vector<std::uint32_t>> to_rank(static_cast<std::size_t>(comm.size()));
+  std::vector<char> leaves(local.size(), 0);
+  std::size_t left = 0;
+  for (std::size_t p = 0; p < local.size(); ++p) {
+    const int owner = bricks.rank_of(local.position_m[p]);
+    if (owner == comm.rank()) continue;
+    to_rank[static_cast<std::size_t>(owner)].push_back(static_cast<std::uint32_t>(p));
+    leaves[p] = 1;
+    ++left;
+  }
+  const std::vector<std::vector<std::byte>> messages = pack_lists(local, to_rank, ParticleTransfer::migration);
+  local.remove_if(leaves);
+  unpack_messages(comm.exchange(messages), ParticleTransfer::migration, local);
+  return left;
+}
+
+void exchange_ghosts(ParticleStore& local, const RecursiveBisection& bricks, double reach_m, const Communicator& comm,
+                     ParticleStore& ghosts) {
+  if (bricks.ranks() != comm.size())
+    throw SimulationError(fmt::format("{} bricks for {} ranks", bricks.ranks(), comm.size()));
+  std::vector<std::vector<std::uint32_t>> to_rank(static_cast<std::size_t>(comm.size()));
+  for (std::size_t p = 0; p < local.size(); ++p)
+    for (int r = 0; r < comm.size(); ++r)
+      if (r != comm.rank() && bricks.brick(r).distance_m(local.position_m[p]) <= reach_m)
+        to_rank[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(p));
+  ghosts = ParticleStore{};
+  unpack_messages(comm.exchange(pack_lists(local, to_rank, ParticleTransfer::ghost)), ParticleTransfer::ghost, ghosts);
+}
+
+}  // namespace regodem

@@ -1,0 +1,24 @@
+#pragma once
+// Particles between the ranks' bricks (issue 19): migration, which hands each particle
+// to the rank whose brick holds it, and ghosts, the copies of other ranks' particles near
+// a rank's brick that its contacts read. Received particles are appended by sending rank,
+// each rank's in its own order, so the result depends only on the ranks' stores.
+#include <cstddef>
+
+#include "core/particle_store.hpp"
+#include "parallel/mpi/communicator.hpp"
+#include "parallel/recursive_bisection.hpp"
+
+namespace regodem {
+
+/// Sends every particle of `local` whose position lies in another rank's brick to that
+/// rank, with the fields that migrate (those the next pass computes start at 0), and
+/// appends those sent here. Returns how many left this rank.
+std::size_t migrate_particles(ParticleStore& local, const RecursiveBisection& bricks, const Communicator& comm);
+
+/// Replaces `ghosts` by copies (the fields ghosts need) of the other ranks' particles
+/// whose centres lie within reach_m of this rank's brick.
+void exchange_ghosts(ParticleStore& local, const RecursiveBisection& bricks, double reach_m, const Communicator& comm,
+                     ParticleStore& ghosts);
+
+}  // namespace regodem

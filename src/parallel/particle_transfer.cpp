@@ -1,0 +1,56 @@
+#include "parallel/particle_transfer.hpp"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+#include "core/error.hpp"
+
+namespace regodem {
+namespace {
+
+bool carried(const ParticleField& field, ParticleTransfer kind) {
+  return kind == ParticleTransfer::migration ? field.migrates : field.ghosts_need;
+}
+
+}  // namespace
+
+void pack_particles(ParticleStore& store, std::span<const std::uint32_t> indices, ParticleTransfer kind,
+                    std::vector<std::byte>& bytes) {
+  const std::uint64_t count = indices.size();
+  const auto append = [&](const void* data, std::size_t size) {
+    const std::size_t at = bytes.size();
+    bytes.resize(at + size);
+    std::memcpy(bytes.data() + at, data, size);
+  };
+  append(&count, sizeof count);
+  store.for_each_described_field([&](const ParticleField& field, auto& values) {
+    if (!carried(field, kind)) return;
+    using T = typename std::remove_reference_t<decltype(values)>::value_type;
+    const std::size_t at = bytes.size();
+    bytes.resize(at + indices.size() * sizeof(T));
+    for (std::size_t k = 0; k < indices.size(); ++k)
+      std::memcpy(bytes.data() + at + k * sizeof(T), &values[indices[k]], sizeof(T));
+  });
+}
+
+std::size_t unpack_particles(std::span<const std::byte> bytes, ParticleTransfer kind, ParticleStore& store) {
+  std::size_t at = 0;
+  const auto take = [&](void* data, std::size_t size) {
+    if (at + size > bytes.size())
+      throw SimulationError(fmt::format("a particle message ends early: {} bytes, {} needed", bytes.size(), at + size));
+    std::memcpy(data, bytes.data() + at, size);
+    at += size;
+  };
+  std::uint64_t count = 0;
+  take(&count, sizeof count);
+  const std::size_t first = store.size();
+  store.for_each_described_field([&](const ParticleField& field, auto& values) {
+    using T = typename std::remove_reference_t<decltype(values)>::value_type;
+    values.resize(first + count, T{});
+    if (carried(field, kind)) take(values.data() + first, count * sizeof(T));
+  });
+  return at;
+}
+
+}  // namespace regodem

@@ -1,0 +1,28 @@
+#pragma once
+// Particles as bytes, for the messages of a run split over ranks (issue 19): what a
+// particle that moves to another rank's brick takes with it (the fields the field table
+// marks `migrates`), or what a ghost image of it needs (`ghosts_need`). The field table
+// (ParticleStore::for_each_described_field) decides, so a field added there travels
+// without a change here.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/particle_store.hpp"
+
+namespace regodem {
+
+enum class ParticleTransfer { migration, ghost };
+
+/// Appends to `bytes` the particles at `indices` of `store`: their count, then each
+/// field that `kind` carries, in the table's order, all the particles' values together.
+void pack_particles(ParticleStore& store, std::span<const std::uint32_t> indices, ParticleTransfer kind,
+                    std::vector<std::byte>& bytes);
+
+/// Appends to `store` the particles of one message pack_particles wrote at the start of
+/// `bytes` (the fields it does not carry start at 0); returns the bytes it took. Throws
+/// SimulationError when the bytes end early.
+std::size_t unpack_particles(std::span<const std::byte> bytes, ParticleTransfer kind, ParticleStore& store);
+
+}  // namespace regodem

@@ -1,0 +1,119 @@
+// Particles between ranks (src/parallel/mpi/particle_exchange.hpp), run by CTest with
+// mpirun on 1, 2 and 3 ranks. Every rank draws the same particles from one seed, so each
+// can check what it holds against the whole set: after migration, exactly the particles
+// in its brick, every migrating field bit for bit; its ghosts, exactly the other ranks'
+// particles within reach of its brick (brute force over the whole set).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+
+#include "core/rng.hpp"
+#include "parallel/mpi/particle_exchange.hpp"
+
+namespace regodem {
+namespace {
+
+const Brick kDomain{{-0.05, -0.05, 0.0}, {0.05, 0.05, 0.2}};
+constexpr std::size_t kParticles = 4000;
+
+// The whole set, ids 0 .. kParticles - 1.
+ParticleStore whole_set() {
+  Rng rng(31);
+  ParticleStore all;
+  for (std::size_t k = 0; k < kParticles; ++k) {
+    NewParticle p;
+    p.position_m = {rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05), rng.uniform(0.0, 0.2)};
+    p.velocity_m_per_s = {rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
+    p.angular_velocity_rad_per_s = {rng.uniform(-50, 50), rng.uniform(-50, 50), rng.uniform(-50, 50)};
+    p.radius_m = rng.uniform(3e-4, 1.2e-3);
+    p.density_kg_per_m3 = 3100.0;
+    p.material = static_cast<MaterialIndex>(k % 2);
+    p.region = static_cast<RegionTag>(k % 4);
+    p.temperature_K = rng.uniform(80, 250);
+    all.add(p);
+  }
+  return all;
+}
+
+// Rank r starts with the particles k with k % ranks == r: nowhere near its brick.
+ParticleStore dealt(ParticleStore& all, const Communicator& comm) {
+  std::vector<char> other(all.size());
+  for (std::size_t k = 0; k < all.size(); ++k) other[k] = static_cast<int>(k % comm.size()) != comm.rank();
+  ParticleStore mine = all;
+  mine.remove_if(other);
+  return mine;
+}
+
+RecursiveBisection bricks_of(ParticleStore& all, int ranks) {
+  return RecursiveBisection(kDomain, all.position_m, {}, ranks);
+}
+
+bool same_bytes(const auto& a, const auto& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(ParticleExchange, MigrationLeavesEachRankExactlyTheParticlesOfItsBrick) {
+  const Communicator comm;
+  ParticleStore all = whole_set();
+  const RecursiveBisection bricks = bricks_of(all, comm.size());
+  ParticleStore mine = dealt(all, comm);
+  const std::size_t left = migrate_particles(mine, bricks, comm);
+  EXPECT_EQ(comm.sum(mine.size()), kParticles);
+  if (comm.size() == 1) {
+    EXPECT_EQ(left, 0u);
+  }
+  std::size_t expected = 0;
+  for (std::size_t k = 0; k < all.size(); ++k) expected += bricks.rank_of(all.position_m[k]) == comm.rank();
+  EXPECT_EQ(mine.size(), expected);
+  for (std::size_t p = 0; p < mine.size(); ++p) {
+    const std::size_t k = mine.id[p];
+    ASSERT_LT(k, all.size());
+    EXPECT_EQ(bricks.rank_of(mine.position_m[p]), comm.rank());
+    EXPECT_TRUE(same_bytes(mine.position_m[p], all.position_m[k]) &&
+                same_bytes(mine.velocity_m_per_s[p], all.velocity_m_per_s[k]) &&
+                same_bytes(mine.angular_velocity_rad_per_s[p], all.angular_velocity_rad_per_s[k]) &&
+                same_bytes(mine.radius_m[p], all.radius_m[k]) && same_bytes(mine.mass_kg[p], all.mass_kg[k]) &&
+                same_bytes(mine.inv_inertia[p], all.inv_inertia[k]) &&
+                same_bytes(mine.temperature_K[p], all.temperature_K[k]) && mine.material[p] == all.material[k] &&
+                mine.region[p] == all.region[k])
+        << "particle " << k;
+  }
+  // The particles move (each by its velocity over 10 ms): those that crossed a face go
+  // on to their new brick, and still none is lost or doubled.
+  for (std::size_t p = 0; p < mine.size(); ++p) mine.position_m[p] += mine.velocity_m_per_s[p] * 0.01;
+  migrate_particles(mine, bricks, comm);
+  EXPECT_EQ(comm.sum(mine.size()), kParticles);
+  for (std::size_t p = 0; p < mine.size(); ++p) EXPECT_EQ(bricks.rank_of(mine.position_m[p]), comm.rank());
+}
+
+TEST(ParticleExchange, GhostsAreTheOtherRanksParticlesWithinReach) {
+  const Communicator comm;
+  ParticleStore all = whole_set();
+  const RecursiveBisection bricks = bricks_of(all, comm.size());
+  ParticleStore mine = dealt(all, comm);
+  migrate_particles(mine, bricks, comm);
+  const double reach = 2.5e-3;  // two of the largest radii
+  ParticleStore ghosts;
+  exchange_ghosts(mine, bricks, reach, comm, ghosts);
+  std::vector<ParticleId> expected, got(ghosts.id);
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (bricks.rank_of(all.position_m[k]) != comm.rank() &&
+        bricks.brick(comm.rank()).distance_m(all.position_m[k]) <= reach)
+      expected.push_back(all.id[k]);
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, expected);
+  if (comm.size() > 1) {
+    EXPECT_FALSE(expected.empty());
+  }
+  for (std::size_t g = 0; g < ghosts.size(); ++g) {
+    const std::size_t k = ghosts.id[g];
+    EXPECT_TRUE(same_bytes(ghosts.position_m[g], all.position_m[k]) &&
+                same_bytes(ghosts.velocity_m_per_s[g], all.velocity_m_per_s[k]) &&
+                same_bytes(ghosts.radius_m[g], all.radius_m[k]) &&
+                same_bytes(ghosts.temperature_K[g], all.temperature_K[k]))
+        << "ghost " << k;
+  }
+}
+
+}  // namespace
+}  // namespace regodem

@@ -8,7 +8,9 @@
 //   bench/make_drilling_window.sh build/release/regodem /work/bench-cache   # once
 //   REGODEM_BENCH_CACHE=/work/bench-cache build/release/bench/bench_drilling_window --benchmark_counters_tabular=true
 //
-// REGODEM_DRILLING_WINDOW names another checkpoint file (of the same scenario).
+// REGODEM_DRILLING_WINDOW names another checkpoint file (of the same scenario);
+// REGODEM_SOURCE_DIR another source tree to read the scenario from (a copy on another
+// machine); REGODEM_BENCH_THREADS the thread counts (bench_threads.hpp).
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -18,6 +20,7 @@
 #include <memory>
 #include <string>
 
+#include "bench_threads.hpp"
 #include "io/checkpoint_file.hpp"
 #include "scenario/scenario_builder.hpp"
 #include "scenario/scenario_reader.hpp"
@@ -51,7 +54,9 @@ Window& window_for(int threads) {
   std::unique_ptr<Window>& slot = built[threads];
   if (!slot) {
     const std::string checkpoint_path = window_checkpoint_path();
-    const std::string scenario = std::string(REGODEM_SOURCE_DIR) + "/scenarios/paper/drill-sieve-reduced.yaml";
+    const char* source = std::getenv("REGODEM_SOURCE_DIR");
+    const std::string scenario =
+        std::string(source ? source : REGODEM_SOURCE_DIR) + "/scenarios/paper/drill-sieve-reduced.yaml";
     // The grains come from the window itself (restored below); the bed is not needed.
     const ScenarioSpec spec = read_scenario_file(scenario, {"initial_state.checkpoint=" + checkpoint_path});
     slot = std::make_unique<Window>(Window{PreparedRun::build(spec, threads), read_checkpoint_file(checkpoint_path)});
@@ -88,13 +93,27 @@ void BM_DrillingWindow(benchmark::State& state) {
       static_cast<double>(sim.contact_statistics().particle_contacts) / static_cast<double>(sim.particles.size());
   state.counters["bonds_per_particle"] =
       static_cast<double>(sim.bonds().size()) / static_cast<double>(sim.particles.size());
+  // A 32-bit FNV-1a hash of every particle's id, position, velocity, spin and temperature
+  // after the window: the same on every thread count, bit for bit (docs/architecture.md).
+  std::uint32_t hash = 2166136261u;
+  const auto mix = [&](const auto& value) {
+    const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
+    for (std::size_t k = 0; k < sizeof value; ++k) hash = (hash ^ bytes[k]) * 16777619u;
+  };
+  for (std::size_t p = 0; p < sim.particles.size(); ++p) {
+    mix(sim.particles.id[p]);
+    mix(sim.particles.position_m[p]);
+    mix(sim.particles.velocity_m_per_s[p]);
+    mix(sim.particles.angular_velocity_rad_per_s[p]);
+    mix(sim.particles.temperature_K[p]);
+  }
+  state.counters["state_hash"] = static_cast<double>(hash);
   for (const WallBody& body : sim.walls.bodies)
     if (body.name == "drill") state.counters["drill_depth_mm"] = 1e3 * (body.depth_at_start_m + body.travel_m);
 }
 BENCHMARK(BM_DrillingWindow)
     ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgsProduct({bench_thread_counts()})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1)
     ->UseRealTime();

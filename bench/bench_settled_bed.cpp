@@ -7,10 +7,12 @@
 // particles at -196 degC, updated every step.
 //
 //   build/release/bench/bench_settled_bed --benchmark_counters_tabular=true
+// (REGODEM_BENCH_THREADS="1,2,4,8,16" for other thread counts, bench_threads.hpp)
 #include <benchmark/benchmark.h>
 
 #include <map>
 
+#include "bench_threads.hpp"
 #include "paper_bed.hpp"
 
 namespace regodem::bench {
@@ -43,7 +45,7 @@ void BM_SettledBed(benchmark::State& state) {
 }
 BENCHMARK(BM_SettledBed)
     ->ArgNames({"particles", "threads", "heat"})
-    ->ArgsProduct({{20000, 100000}, {1, 2}, {0, 1}})
+    ->ArgsProduct({{20000, 100000}, bench_thread_counts(), {0, 1}})
     ->Unit(benchmark::kMillisecond)->Iterations(1000)->UseRealTime();
 
 /// The pouring phase at the reduced modulus: particles inserted at a rate, falling and

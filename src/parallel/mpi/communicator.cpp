@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <limits>
+#include <string>
 
 #include "core/error.hpp"
 
@@ -53,6 +54,36 @@ std::uint64_t Communicator::sum(std::uint64_t value) const {
   std::uint64_t total = 0;
   MPI_Allreduce(&value, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
   return total;
+}
+
+void Communicator::agree(const std::exception_ptr& error) const {
+  enum Kind : int { input = 1, simulation = 2, other = 3 };
+  int kind = 0;
+  std::string message;
+  if (error) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const InputError& e) {
+      kind = input, message = e.what();
+    } catch (const SimulationError& e) {
+      kind = simulation, message = e.what();
+    } catch (const std::exception& e) {
+      kind = other, message = e.what();
+    } catch (...) {
+      kind = other, message = "an unknown error";
+    }
+  }
+  int first_failed = kind ? rank_ : size_;
+  MPI_Allreduce(MPI_IN_PLACE, &first_failed, 1, MPI_INT, MPI_MIN, comm_);
+  if (first_failed == size_) return;
+  int header[2] = {kind, static_cast<int>(message.size())};
+  MPI_Bcast(header, 2, MPI_INT, first_failed, comm_);
+  message.resize(static_cast<std::size_t>(header[1]));
+  MPI_Bcast(message.data(), header[1], MPI_CHAR, first_failed, comm_);
+  if (size_ > 1) message = fmt::format("rank {}: {}", first_failed, message);
+  if (header[0] == input) throw InputError(message);
+  if (header[0] == simulation) throw SimulationError(message);
+  throw std::runtime_error(message);
 }
 
 }  // namespace regodem

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <vector>
 
 namespace regodem {
@@ -21,6 +22,12 @@ class Communicator {
   std::vector<std::vector<std::byte>> exchange(const std::vector<std::vector<std::byte>>& to_rank) const;
   /// The sum over the ranks.
   std::uint64_t sum(std::uint64_t value) const;
+  /// A point every rank reaches with the error it met since the last one (or none).
+  /// When any rank brings one, every rank throws the error of the lowest such rank, its
+  /// kind kept (InputError, SimulationError, else std::runtime_error) and its message
+  /// prefixed by "rank R: " on more than one rank: all ranks stop with the message of
+  /// the rank that failed, and none waits for a rank that has stopped.
+  void agree(const std::exception_ptr& error) const;
 
  private:
   MPI_Comm comm_;

@@ -56,6 +56,33 @@ std::uint64_t Communicator::sum(std::uint64_t value) const {
   return total;
 }
 
+std::vector<std::vector<std::byte>> Communicator::gather(const std::vector<std::byte>& mine, int root) const {
+  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw SimulationError(fmt::format("a message of {} bytes between ranks is larger than MPI's int counts", mine.size()));
+  const int count = static_cast<int>(mine.size());
+  const auto ranks = static_cast<std::size_t>(size_);
+  std::vector<int> counts(rank_ == root ? ranks : 0), offsets(counts.size());
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    if (total > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw SimulationError(fmt::format("{} bytes gathered on one rank are more than MPI's int counts", total));
+    offsets[r] = static_cast<int>(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  std::vector<std::byte> all(total);
+  MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, root, comm_);
+  std::vector<std::vector<std::byte>> by_rank(counts.size());
+  for (std::size_t r = 0; r < counts.size(); ++r)
+    by_rank[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
+  return by_rank;
+}
+
+double Communicator::broadcast(double value, int root) const {
+  MPI_Bcast(&value, 1, MPI_DOUBLE, root, comm_);
+  return value;
+}
+
 void Communicator::agree(const std::exception_ptr& error) const {
   enum Kind : int { input = 1, simulation = 2, other = 3 };
   int kind = 0;

@@ -22,6 +22,10 @@ class Communicator {
   std::vector<std::vector<std::byte>> exchange(const std::vector<std::vector<std::byte>>& to_rank) const;
   /// The sum over the ranks.
   std::uint64_t sum(std::uint64_t value) const;
+  /// Every rank's bytes on rank `root`, by rank (the other ranks get nothing).
+  std::vector<std::vector<std::byte>> gather(const std::vector<std::byte>& mine, int root) const;
+  /// Root's value on every rank.
+  double broadcast(double value, int root) const;
   /// A point every rank reaches with the error it met since the last one (or none).
   /// When any rank brings one, every rank throws the error of the lowest such rank, its
   /// kind kept (InputError, SimulationError, else std::runtime_error) and its message

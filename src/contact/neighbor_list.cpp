@@ -63,6 +63,27 @@ void NeighborList::history_follows_removal(const std::vector<char>& removed) {
   saved_owner_of_.resize(kept);
 }
 
+ContactHistoryByOwner NeighborList::saved_history_of_kept(const std::vector<std::uint8_t>& dropped) const {
+  ContactHistoryByOwner kept;
+  for (std::size_t p = 0; p < dropped.size(); ++p) {  // one flag per particle
+    if (dropped[p]) continue;
+    if (p < saved_owner_of_.size()) {  // else inserted since the save: no history
+      const std::uint32_t owner = saved_owner_of_[p];
+      kept.contacts.insert(kept.contacts.end(), saved_.begin() + saved_begin_[owner],
+                           saved_.begin() + saved_begin_[owner + 1]);
+    }
+    kept.begin.push_back(static_cast<std::uint32_t>(kept.contacts.size()));
+  }
+  return kept;
+}
+
+void NeighborList::set_saved_history(ContactHistoryByOwner history) {
+  saved_begin_ = std::move(history.begin);
+  saved_ = std::move(history.contacts);
+  saved_owner_of_.resize(saved_begin_.size() - 1);
+  for (std::size_t p = 0; p < saved_owner_of_.size(); ++p) saved_owner_of_[p] = static_cast<std::uint32_t>(p);
+}
+
 void NeighborList::restore_history(const ParticleStore& particles, int threads) {
   const std::size_t n = particles.size();
   tangential_history_m.assign(partner.size(), Vec3{});

@@ -67,6 +67,24 @@ struct NeighborSkin {
   NeighborSkin(double skin) : skin_m(skin) {}  // NOLINT(google-explicit-constructor)
 };
 
+/// One contact's tangential history, keyed so that it outlives the lists' indices: by the
+/// partner's id, a wall primitive, or a mesh wall and triangle. Kept by the pair's owner.
+struct SavedContact {
+  ParticleId partner_id;  // the triangle for a mesh contact
+  std::uint32_t wall;     // primitive index, kNoWall for a particle partner, kMeshWall + mesh
+  Vec3 history_m;
+  static constexpr std::uint32_t kNoWall = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kMeshWall = 0x80000000u;
+};
+
+/// Contact history by owner: owner p's contacts are contacts[begin[p] .. begin[p+1]).
+/// What a particle takes with it to another rank (issue 19).
+struct ContactHistoryByOwner {
+  std::vector<std::uint32_t> begin{0};
+  std::vector<SavedContact> contacts;
+  std::size_t owners() const { return begin.size() - 1; }
+};
+
 class NeighborList {
  public:
   // Particle pairs: partners of owner i are partner[offset[i] .. offset[i+1]).
@@ -137,6 +155,13 @@ class NeighborList {
   /// After save_history(): the flagged particles are about to be removed (the rest keep
   /// their order), so the saved owners are found again at their new indices.
   void history_follows_removal(const std::vector<char>& removed);
+  /// After save_history(): the saved history of the particles not flagged (one flag per
+  /// particle), by owner in their order (a distributed run's own particles, before its
+  /// ghosts are dropped).
+  ContactHistoryByOwner saved_history_of_kept(const std::vector<std::uint8_t>& dropped) const;
+  /// Replaces the saved history by `history`, owner p being the particle at index p now
+  /// (particles past its owners have none); the next rebuild(..., true) restores it.
+  void set_saved_history(ContactHistoryByOwner history);
   /// The last build's sort: the particle now at index i was at index sort_order()[i].
   const std::vector<std::uint32_t>& sort_order() const { return sort_order_; }
 
@@ -154,13 +179,8 @@ class NeighborList {
   // History saved across a rebuild (only entries with a non-zero spring), by owner index
   // at the save; saved_owner_of_[p]: the saved owner of the particle at index p before
   // the build's sort (kNone: none, inserted since). Nothing here is sized by the ids.
-  struct SavedContact {
-    ParticleId partner_id;
-    std::uint32_t wall;  // primitive index, kNoWall for a particle partner, kMeshWall + mesh
-    Vec3 history_m;       // (partner_id is then the triangle)
-  };
-  static constexpr std::uint32_t kNoWall = 0xFFFFFFFFu;
-  static constexpr std::uint32_t kMeshWall = 0x80000000u;
+  static constexpr std::uint32_t kNoWall = SavedContact::kNoWall;
+  static constexpr std::uint32_t kMeshWall = SavedContact::kMeshWall;
   std::vector<std::uint32_t> saved_begin_;  // CSR over the saved owners
   std::vector<std::uint32_t> saved_owner_of_;
   std::vector<SavedContact> saved_;

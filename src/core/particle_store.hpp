@@ -37,6 +37,8 @@ struct ParticleField {
   // Copied to the ghost images of a particle near another rank's domain: what a contact
   // with it reads.
   bool ghosts_need;
+  // Of those, what changes in a step, sent to the ghosts every step between builds.
+  bool ghosts_refresh;
 };
 
 class ParticleStore {
@@ -67,23 +69,23 @@ class ParticleStore {
   /// of fields (the field table).
   template <class F>
   void for_each_described_field(F&& f) {
-    f(ParticleField{"id", "-", true, true}, id);
-    f(ParticleField{"radius", "m", true, true}, radius_m);
-    f(ParticleField{"mass", "kg", true, false}, mass_kg);
-    f(ParticleField{"inverse_mass", "1/kg", true, true}, inv_mass_per_kg);
-    f(ParticleField{"inverse_inertia", "1/(kg m^2)", true, true}, inv_inertia);
-    f(ParticleField{"position", "m", true, true}, position_m);
-    f(ParticleField{"velocity", "m/s", true, true}, velocity_m_per_s);
-    f(ParticleField{"angular_velocity", "rad/s", true, true}, angular_velocity_rad_per_s);
-    f(ParticleField{"force", "N", false, false}, force_N);
-    f(ParticleField{"torque", "N m", false, false}, torque_N_m);
-    f(ParticleField{"material", "-", true, true}, material);
-    f(ParticleField{"region", "-", true, false}, region);
-    f(ParticleField{"temperature", "K", true, true}, temperature_K);
-    f(ParticleField{"heat_flow", "W", false, false}, heat_flow_W);
-    f(ParticleField{"conductivity", "W/(m K)", true, true}, conductivity_W_per_mK);
-    f(ParticleField{"peak_temperature", "K", true, false}, peak_temperature_K);
-    f(ParticleField{"time_above_threshold", "s", true, false}, time_above_threshold_s);
+    f(ParticleField{"id", "-", true, true, false}, id);
+    f(ParticleField{"radius", "m", true, true, false}, radius_m);
+    f(ParticleField{"mass", "kg", true, false, false}, mass_kg);
+    f(ParticleField{"inverse_mass", "1/kg", true, true, false}, inv_mass_per_kg);
+    f(ParticleField{"inverse_inertia", "1/(kg m^2)", true, true, false}, inv_inertia);
+    f(ParticleField{"position", "m", true, true, true}, position_m);
+    f(ParticleField{"velocity", "m/s", true, true, true}, velocity_m_per_s);
+    f(ParticleField{"angular_velocity", "rad/s", true, true, true}, angular_velocity_rad_per_s);
+    f(ParticleField{"force", "N", false, false, false}, force_N);
+    f(ParticleField{"torque", "N m", false, false, false}, torque_N_m);
+    f(ParticleField{"material", "-", true, true, false}, material);
+    f(ParticleField{"region", "-", true, false, false}, region);
+    f(ParticleField{"temperature", "K", true, true, true}, temperature_K);
+    f(ParticleField{"heat_flow", "W", false, false, false}, heat_flow_W);
+    f(ParticleField{"conductivity", "W/(m K)", true, true, true}, conductivity_W_per_mK);
+    f(ParticleField{"peak_temperature", "K", true, false, false}, peak_temperature_K);
+    f(ParticleField{"time_above_threshold", "s", true, false, false}, time_above_threshold_s);
   }
   /// Calls f(vector&) for every per-particle field.
   template <class F>

@@ -10,8 +10,25 @@ namespace regodem {
 namespace {
 
 bool carried(const ParticleField& field, ParticleTransfer kind) {
-  return kind == ParticleTransfer::migration ? field.migrates : field.ghosts_need;
+  switch (kind) {
+    case ParticleTransfer::migration: return field.migrates;
+    case ParticleTransfer::ghost: return field.ghosts_need;
+    case ParticleTransfer::ghost_refresh: return field.ghosts_refresh;
+  }
+  return false;
 }
+
+// Reads from the front of a message, checking its end.
+struct MessageReader {
+  std::span<const std::byte> bytes;
+  std::size_t at = 0;
+  void take(void* data, std::size_t size) {
+    if (at + size > bytes.size())
+      throw SimulationError(fmt::format("a particle message ends early: {} bytes, {} needed", bytes.size(), at + size));
+    std::memcpy(data, bytes.data() + at, size);
+    at += size;
+  }
+};
 
 }  // namespace
 
@@ -35,22 +52,30 @@ void pack_particles(ParticleStore& store, std::span<const std::uint32_t> indices
 }
 
 std::size_t unpack_particles(std::span<const std::byte> bytes, ParticleTransfer kind, ParticleStore& store) {
-  std::size_t at = 0;
-  const auto take = [&](void* data, std::size_t size) {
-    if (at + size > bytes.size())
-      throw SimulationError(fmt::format("a particle message ends early: {} bytes, {} needed", bytes.size(), at + size));
-    std::memcpy(data, bytes.data() + at, size);
-    at += size;
-  };
+  MessageReader message{bytes};
   std::uint64_t count = 0;
-  take(&count, sizeof count);
+  message.take(&count, sizeof count);
   const std::size_t first = store.size();
   store.for_each_described_field([&](const ParticleField& field, auto& values) {
     using T = typename std::remove_reference_t<decltype(values)>::value_type;
     values.resize(first + count, T{});
-    if (carried(field, kind)) take(values.data() + first, count * sizeof(T));
+    if (carried(field, kind)) message.take(values.data() + first, count * sizeof(T));
   });
-  return at;
+  return message.at;
+}
+
+std::size_t unpack_particles_at(std::span<const std::byte> bytes, ParticleTransfer kind, ParticleStore& store,
+                                std::span<const std::uint32_t> indices) {
+  MessageReader message{bytes};
+  std::uint64_t count = 0;
+  message.take(&count, sizeof count);
+  if (count != indices.size())
+    throw SimulationError(fmt::format("a particle message holds {} particles for {} places", count, indices.size()));
+  store.for_each_described_field([&](const ParticleField& field, auto& values) {
+    if (!carried(field, kind)) return;
+    for (const std::uint32_t i : indices) message.take(&values[i], sizeof values[i]);
+  });
+  return message.at;
 }
 
 }  // namespace regodem

@@ -13,7 +13,9 @@
 
 namespace regodem {
 
-enum class ParticleTransfer { migration, ghost };
+/// What a message carries: a migrating particle (fields marked `migrates`), a new ghost
+/// (`ghosts_need`), or a ghost's update between builds (`ghosts_refresh`).
+enum class ParticleTransfer { migration, ghost, ghost_refresh };
 
 /// Appends to `bytes` the particles at `indices` of `store`: their count, then each
 /// field that `kind` carries, in the table's order, all the particles' values together.
@@ -24,5 +26,11 @@ void pack_particles(ParticleStore& store, std::span<const std::uint32_t> indices
 /// `bytes` (the fields it does not carry start at 0); returns the bytes it took. Throws
 /// SimulationError when the bytes end early.
 std::size_t unpack_particles(std::span<const std::byte> bytes, ParticleTransfer kind, ParticleStore& store);
+
+/// Writes the particles of one message over those at `indices` of `store` (one index per
+/// particle of the message), only the fields `kind` carries; returns the bytes it took.
+/// Throws SimulationError when the bytes end early or hold another count.
+std::size_t unpack_particles_at(std::span<const std::byte> bytes, ParticleTransfer kind, ParticleStore& store,
+                                std::span<const std::uint32_t> indices);
 
 }  // namespace regodem

@@ -150,9 +150,18 @@ void Simulation::refresh_contact_parameters() {
 }
 
 void Simulation::rebuild_neighbors(bool history_saved) {
+  // Under MPI the grid is every rank's (sized for all ranks' particles), so that the sort
+  // and every sum over it go in the order of one process.
+  std::size_t grid_particles = particles.size();
+  if (halo_) {
+    redistribute_particles();
+    history_saved = true;
+    grid_particles = halo_->sum_over_ranks(own_particle_count());
+    halo_build_pending_ = false;
+  }
   // The grid is sized for the current particle count: the counting sort costs one pass
   // over the cells, which must stay of the order of the particle count.
-  const double max_cells = 16.0 * static_cast<double>(particles.size()) + 4096.0;
+  const double max_cells = 16.0 * static_cast<double>(grid_particles) + 4096.0;
   if (grid_.cell_count() <= 1 || static_cast<double>(grid_.cell_count()) > max_cells ||
       static_cast<double>(grid_.cell_count()) < 0.25 * max_cells)
     grid_ = CellGrid(settings_.domain.min_m, settings_.domain.max_m,
@@ -163,6 +172,13 @@ void Simulation::rebuild_neighbors(bool history_saved) {
   skin.body_step_m = walls.surface_steps_m(time_s_, settings_.time_step_s);
   neighbors_.rebuild(particles, walls, grid_, skin, active_threads_, history_saved);
   walls.mark_neighbor_build();
+  if (halo_) {  // the ghost flags and the halo's lists follow the sort
+    const std::vector<std::uint32_t>& order = neighbors_.sort_order();
+    std::vector<std::uint8_t> sorted(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = ghost_[order[i]];
+    ghost_ = std::move(sorted);
+    halo_->follow_sort(order);
+  }
   if (!bonds_.empty()) {  // the rebuild re-sorted the particles
     const std::vector<std::uint32_t>& order = neighbors_.sort_order();
     std::vector<std::uint32_t> new_index_of_old(order.size());
@@ -179,7 +195,10 @@ int Simulation::force_pass_threads() const {
 
 void Simulation::ensure_forces() {
   if (forces_current_) return;
-  if (neighbors_.needs_rebuild(particles, walls, settings_.threads)) rebuild_neighbors();
+  if (rebuild_everywhere(neighbors_.needs_rebuild(particles, walls, settings_.threads)))
+    rebuild_neighbors();
+  else if (halo_)
+    halo_->refresh_ghosts(particles);
   // What changed the state without a step (an insertion, a removal, new contact
   // properties) also changed the springs' energy: the audit books it as exchanged.
   const double springs_before_J = contact_elastic_energy_J_;
@@ -195,7 +214,10 @@ void Simulation::step() {
   walls.advance(time_s_, settings_.time_step_s);
   time_s_ += settings_.time_step_s;
   ++step_;
-  if (neighbors_.needs_rebuild(particles.size(), max_displacement_ratio2, walls)) rebuild_neighbors();
+  if (rebuild_everywhere(neighbors_.needs_rebuild(particles.size(), max_displacement_ratio2, walls)))
+    rebuild_neighbors();
+  else if (halo_)
+    halo_->refresh_ghosts(particles);
   compute_forces(settings_.time_step_s);
   second_half_kick();
   book_mechanical_energy(settings_.time_step_s);
@@ -334,9 +356,11 @@ double Simulation::first_half_kick_and_drift() {
   const Vec3* __restrict x_build = at_build.data();
   const double* __restrict inv_half2 = neighbors_.inverse_half_skin2().data();
   const Domain domain = settings_.domain;
+  const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();  // their ranks move them
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) \
     reduction(max : escaped, max_ratio2)
   for (std::size_t i = 0; i < n; ++i) {
+    if (ghost && ghost[i]) continue;
     kick(i);
     x[i] += v[i] * dt;
     if (!domain.contains(x[i])) escaped = 1;  // also false for NaN
@@ -357,8 +381,10 @@ void Simulation::second_half_kick() {
   const HalfKick kick(particles, half_dt);
   const Vec3* __restrict v = particles.velocity_m_per_s.data();
   const double* __restrict radius = particles.radius_m.data();
+  const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();
 #pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) reduction(max : too_fast)
   for (std::size_t i = 0; i < n; ++i) {
+    if (ghost && ghost[i]) continue;
     kick(i);
     // Moving more than half a radius per step means the contacts are no longer resolved.
     const double limit = 0.5 * radius[i];

@@ -14,6 +14,7 @@
 #include "geometry/wall_set.hpp"
 #include "sim/energy_audit.hpp"
 #include "sim/impact_record.hpp"
+#include "sim/particle_halo.hpp"
 #include "thermal/conduction_parameters.hpp"
 #include "thermal/heat_partition.hpp"
 #include "thermal/thermal_ledger.hpp"
@@ -217,6 +218,23 @@ class Simulation {
   void adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved,
                        std::optional<double> temperature_K = std::nullopt);
 
+  // A run split over MPI ranks (issue 19; sim/particle_halo.hpp).
+  /// From the next step this simulation steps the particles of one rank, and `halo`
+  /// (which must outlive it) brings the other ranks' particles near them: the lists are
+  /// rebuilt on every rank at once, and at each build the particles move to the rank of
+  /// their brick. What each rank's particles do is then bit for bit what they do in one
+  /// process. Not yet under MPI (InputError): bonds, lumped walls, removing lost
+  /// particles; the totals (energy books, wall forces and heat, contact statistics,
+  /// measurements) still count each rank's contacts with ghosts as its own.
+  void distribute(ParticleHalo* halo);
+  /// The particles this simulation steps (all of them in one process).
+  std::size_t own_particle_count() const;
+  /// Whether the particle at index i is another rank's (a ghost).
+  bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
+  /// How far from its brick a rank needs the other ranks' particles, for particles no
+  /// larger than largest_radius_m: the farthest the lists pair two particles.
+  double ghost_reach_m(double largest_radius_m) const;
+
   ParticleStore particles;
   MaterialTable materials;
   WallSet walls;
@@ -226,6 +244,11 @@ class Simulation {
   void ensure_forces();
   /// history_saved: the contact history was already saved by id (after a removal).
   void rebuild_neighbors(bool history_saved = false);
+  /// Whether the lists must be rebuilt, given this rank's answer (every rank's, under MPI).
+  bool rebuild_everywhere(bool here);
+  /// Under MPI, at a build: drops the ghosts and lets the halo move particles and bring
+  /// new ghosts, each with the contact history it owns.
+  void redistribute_particles();
   /// Removes the particles outside the domain, their bonds and contact history.
   void remove_lost_particles();
   /// Removes the flagged particles, their bonds and contact history; rebuilds the lists.
@@ -372,6 +395,10 @@ class Simulation {
   std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0
   std::vector<char> conductivity_varies_;      // per material: k is a table
   std::vector<WallContactHeat> wall_contact_heat_;  // per wall node, taken at each contact pass
+
+  ParticleHalo* halo_ = nullptr;         // under MPI only
+  bool halo_build_pending_ = false;       // distributed since the last build
+  std::vector<std::uint8_t> ghost_;       // per particle under MPI, else empty
 
   BondStore bonds_;
   std::vector<BondParameters> bond_kinds_;

@@ -92,6 +92,33 @@ TEST(ParticleTransfer, AMigratingParticleTakesEveryFieldButThoseTheNextPassCompu
 
 TEST(ParticleTransfer, AGhostCarriesWhatAContactReads) { expect_carried(ParticleTransfer::ghost); }
 
+TEST(ParticleTransfer, AGhostUpdateOverwritesWhatChangesInAStepAndNothingElse) {
+  ParticleStore from = random_store(50);
+  const std::vector<std::uint32_t> picked = {7, 3, 49};
+  std::vector<std::byte> bytes;
+  pack_particles(from, picked, ParticleTransfer::ghost_refresh, bytes);
+  ParticleStore into = random_store(6), before = random_store(6);
+  const std::vector<std::uint32_t> places = {4, 0, 5};
+  EXPECT_EQ(unpack_particles_at(bytes, ParticleTransfer::ghost_refresh, into, places), bytes.size());
+  ASSERT_EQ(into.size(), 6u);
+  std::set<std::string> refreshed, kept;
+  from.for_each_described_field([&](const ParticleField& f, auto&) {
+    (f.ghosts_refresh ? refreshed : kept).insert(f.name);
+    EXPECT_TRUE(!f.ghosts_refresh || f.ghosts_need) << f.name << ": refreshed but not in a new ghost";
+  });
+  for (const char* changes : {"position", "velocity", "angular_velocity", "temperature", "conductivity"})
+    EXPECT_TRUE(refreshed.count(changes)) << changes;
+  for (std::size_t k = 0; k < picked.size(); ++k) {
+    for (const std::string& name : refreshed) EXPECT_TRUE(same_field(from, picked[k], into, places[k], name)) << name;
+    for (const std::string& name : kept) EXPECT_TRUE(same_field(before, places[k], into, places[k], name)) << name;
+  }
+  for (const std::size_t untouched : {1, 2, 3})
+    for (const std::string& name : refreshed) EXPECT_TRUE(same_field(before, untouched, into, untouched, name)) << name;
+  // Another count than the places given is refused.
+  EXPECT_THROW(unpack_particles_at(bytes, ParticleTransfer::ghost_refresh, into, std::vector<std::uint32_t>{1, 2}),
+               SimulationError);
+}
+
 TEST(ParticleTransfer, AMessageThatEndsEarlyIsRefused) {
   ParticleStore from = random_store(10);
   std::vector<std::byte> bytes;

@@ -1,0 +1,179 @@
+#include "parallel/mpi/halo_exchange.hpp"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+#include "core/error.hpp"
+#include "parallel/particle_transfer.hpp"
+
+namespace regodem {
+namespace {
+
+// A message: the particles (pack_particles), then each one's contact count and contacts.
+std::vector<std::byte> pack_with_history(ParticleStore& particles, const ContactHistoryByOwner& history,
+                                         const std::vector<std::uint32_t>& indices, ParticleTransfer kind) {
+  std::vector<std::byte> bytes;
+  pack_particles(particles, indices, kind, bytes);
+  const auto append = [&](const void* data, std::size_t size) {
+    const std::size_t at = bytes.size();
+    bytes.resize(at + size);
+    if (size > 0) std::memcpy(bytes.data() + at, data, size);
+  };
+  for (const std::uint32_t p : indices) {
+    const std::uint32_t count = history.begin[p + 1] - history.begin[p];
+    append(&count, sizeof count);
+    append(history.contacts.data() + history.begin[p], count * sizeof(SavedContact));
+  }
+  return bytes;
+}
+
+// Appends each message's particles to `particles` and their contacts to `history`; returns
+// the index range each message's particles took.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> unpack_with_history(
+    const std::vector<std::vector<std::byte>>& messages, ParticleTransfer kind, ParticleStore& particles,
+    ContactHistoryByOwner& history) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges(messages.size());
+  for (std::size_t r = 0; r < messages.size(); ++r) {
+    const std::vector<std::byte>& message = messages[r];
+    const auto first = static_cast<std::uint32_t>(particles.size());
+    ranges[r] = {first, first};
+    if (message.empty()) continue;
+    std::size_t at = unpack_particles(message, kind, particles);
+    const auto take = [&](void* data, std::size_t size) {
+      if (at + size > message.size())
+        throw SimulationError(fmt::format("a particle message of {} bytes ends early in its contact history",
+                                          message.size()));
+      if (size > 0) std::memcpy(data, message.data() + at, size);
+      at += size;
+    };
+    for (std::size_t p = first; p < particles.size(); ++p) {
+      std::uint32_t count = 0;
+      take(&count, sizeof count);
+      const std::size_t from = history.contacts.size();
+      history.contacts.resize(from + count);
+      take(history.contacts.data() + from, count * sizeof(SavedContact));
+      history.begin.push_back(static_cast<std::uint32_t>(history.contacts.size()));
+    }
+    if (at != message.size())
+      throw SimulationError(fmt::format("a particle message of {} bytes held {} more", message.size(),
+                                        message.size() - at));
+    ranges[r].second = static_cast<std::uint32_t>(particles.size());
+  }
+  return ranges;
+}
+
+// Keeps the history of the owners not flagged.
+void remove_history(ContactHistoryByOwner& history, const std::vector<char>& removed) {
+  ContactHistoryByOwner kept;
+  kept.contacts.reserve(history.contacts.size());
+  for (std::size_t p = 0; p < history.owners(); ++p) {
+    if (removed[p]) continue;
+    kept.contacts.insert(kept.contacts.end(), history.contacts.begin() + history.begin[p],
+                         history.contacts.begin() + history.begin[p + 1]);
+    kept.begin.push_back(static_cast<std::uint32_t>(kept.contacts.size()));
+  }
+  history = std::move(kept);
+}
+
+}  // namespace
+
+HaloExchange::HaloExchange(const Communicator& comm, RecursiveBisection bricks, double reach_m, Start start)
+    : comm_(comm), bricks_(std::move(bricks)), reach_m_(reach_m), replicated_(start == Start::replicated) {
+  if (bricks_.ranks() != comm_.size())
+    throw SimulationError(fmt::format("{} bricks for {} ranks", bricks_.ranks(), comm_.size()));
+  if (!(reach_m_ > 0.0)) throw SimulationError(fmt::format("a ghost reach of {} m", reach_m_));
+}
+
+bool HaloExchange::any_rank(bool mine) { return comm_.sum(mine ? 1u : 0u) > 0; }
+
+std::size_t HaloExchange::sum_over_ranks(std::size_t mine) { return comm_.sum(mine); }
+
+std::size_t HaloExchange::ghost_count() const {
+  std::size_t count = 0;
+  for (const std::vector<std::uint32_t>& from : received_from_) count += from.size();
+  return count;
+}
+
+void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner& history,
+                                std::vector<std::uint8_t>& is_ghost) {
+  const auto ranks = static_cast<std::size_t>(comm_.size());
+  const int me = comm_.rank();
+  if (history.owners() != particles.size())
+    throw SimulationError(fmt::format("{} particles with {} contact histories", particles.size(), history.owners()));
+
+  // Each particle to the rank of its brick, with the contact history it owns.
+  std::vector<std::vector<std::uint32_t>> to_rank(ranks);
+  std::vector<char> leaves(particles.size(), 0);
+  for (std::size_t p = 0; p < particles.size(); ++p) {
+    const int owner = bricks_.rank_of(particles.position_m[p]);
+    if (owner == me) continue;
+    to_rank[static_cast<std::size_t>(owner)].push_back(static_cast<std::uint32_t>(p));
+    leaves[p] = 1;
+    ++migrated_;
+    migrated_contacts_ += history.begin[p + 1] - history.begin[p];
+  }
+  std::vector<std::vector<std::byte>> messages(ranks);
+  if (replicated_) {  // the other ranks hold the same particles: keep this brick's
+    migrated_ = migrated_contacts_ = 0;
+    particles.remove_if(leaves);
+    remove_history(history, leaves);
+    replicated_ = false;
+  } else {
+    for (std::size_t r = 0; r < ranks; ++r)
+      if (!to_rank[r].empty())
+        messages[r] = pack_with_history(particles, history, to_rank[r], ParticleTransfer::migration);
+    particles.remove_if(leaves);
+    remove_history(history, leaves);
+    unpack_with_history(comm_.exchange(messages), ParticleTransfer::migration, particles, history);
+  }
+  const std::size_t own = particles.size();
+  // A particle outside every brick (the bricks do not tile the domain) would miss partners.
+  for (std::size_t p = 0; p < own; ++p)
+    if (bricks_.brick(me).distance_m(particles.position_m[p]) > 0.0)
+      throw SimulationError(fmt::format("particle {} at ({:.6g}, {:.6g}, {:.6g}) m lies outside every rank's brick: "
+                                        "the bricks must tile the run's domain",
+                                        particles.id[p], particles.position_m[p].x, particles.position_m[p].y,
+                                        particles.position_m[p].z));
+
+  // Ghosts: copies of each particle within reach of another rank's brick.
+  sent_to_.assign(ranks, {});
+  for (std::size_t p = 0; p < own; ++p)
+    for (std::size_t r = 0; r < ranks; ++r)
+      if (static_cast<int>(r) != me && bricks_.brick(static_cast<int>(r)).distance_m(particles.position_m[p]) <= reach_m_)
+        sent_to_[r].push_back(static_cast<std::uint32_t>(p));
+  for (std::size_t r = 0; r < ranks; ++r)
+    messages[r] = sent_to_[r].empty() ? std::vector<std::byte>{}
+                                      : pack_with_history(particles, history, sent_to_[r], ParticleTransfer::ghost);
+  const auto ranges = unpack_with_history(comm_.exchange(messages), ParticleTransfer::ghost, particles, history);
+  received_from_.assign(ranks, {});
+  for (std::size_t r = 0; r < ranks; ++r)
+    for (std::uint32_t i = ranges[r].first; i < ranges[r].second; ++i) received_from_[r].push_back(i);
+  is_ghost.assign(particles.size(), 0);
+  std::fill(is_ghost.begin() + static_cast<std::ptrdiff_t>(own), is_ghost.end(), std::uint8_t{1});
+}
+
+void HaloExchange::follow_sort(const std::vector<std::uint32_t>& order) {
+  std::vector<std::uint32_t> new_of_old(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) new_of_old[order[i]] = static_cast<std::uint32_t>(i);
+  for (auto* lists : {&sent_to_, &received_from_})
+    for (std::vector<std::uint32_t>& list : *lists)
+      for (std::uint32_t& i : list) i = new_of_old[i];
+}
+
+void HaloExchange::refresh_ghosts(ParticleStore& particles) {
+  const auto ranks = static_cast<std::size_t>(comm_.size());
+  std::vector<std::vector<std::byte>> messages(ranks);
+  for (std::size_t r = 0; r < ranks; ++r)
+    if (!sent_to_[r].empty()) pack_particles(particles, sent_to_[r], ParticleTransfer::ghost_refresh, messages[r]);
+  const std::vector<std::vector<std::byte>> received = comm_.exchange(messages);
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (received_from_[r].empty() && received[r].empty()) continue;
+    const std::size_t used = unpack_particles_at(received[r], ParticleTransfer::ghost_refresh, particles, received_from_[r]);
+    if (used != received[r].size())
+      throw SimulationError(fmt::format("a ghost update of {} bytes held {} more", received[r].size(),
+                                        received[r].size() - used));
+  }
+}
+
+}  // namespace regodem

@@ -1,0 +1,53 @@
+#pragma once
+// The ParticleHalo of a run over MPI ranks (issue 19): at each neighbour build, the
+// particles that left this rank's brick go to the rank of theirs with the contact history
+// they own, and each rank receives copies (ghosts) of the other ranks' particles within
+// the reach of its brick, with their history; between builds the same ghosts are brought
+// up to date every step (positions, velocities, spins, temperatures), in the order of
+// the build.
+#include <cstdint>
+#include <vector>
+
+#include "parallel/mpi/communicator.hpp"
+#include "parallel/recursive_bisection.hpp"
+#include "sim/particle_halo.hpp"
+
+namespace regodem {
+
+class HaloExchange final : public ParticleHalo {
+ public:
+  /// How the particles are spread at the first build: each rank holds its own (a rank may
+  /// hold any, they migrate), or every rank holds all of them, the same (each then keeps
+  /// those of its brick with the contact history they own, and nothing is sent).
+  enum class Start { spread, replicated };
+  /// reach_m: Simulation::ghost_reach_m for the largest particle. `comm` must outlive it.
+  /// The bricks must tile the run's domain.
+  HaloExchange(const Communicator& comm, RecursiveBisection bricks, double reach_m, Start start = Start::spread);
+
+  bool any_rank(bool mine) override;
+  std::size_t sum_over_ranks(std::size_t mine) override;
+  void redistribute(ParticleStore& particles, ContactHistoryByOwner& history,
+                    std::vector<std::uint8_t>& is_ghost) override;
+  void follow_sort(const std::vector<std::uint32_t>& order) override;
+  void refresh_ghosts(ParticleStore& particles) override;
+
+  const RecursiveBisection& bricks() const { return bricks_; }
+  /// Particles that left this rank since the start, the contact histories they took
+  /// with them, and this rank's ghosts now.
+  std::uint64_t migrated_count() const { return migrated_; }
+  std::uint64_t migrated_contact_count() const { return migrated_contacts_; }
+  std::size_t ghost_count() const;
+
+ private:
+  const Communicator& comm_;
+  RecursiveBisection bricks_;
+  double reach_m_;
+  // Since the last build, by rank: the indices of this rank's particles it sent that rank
+  // as ghosts, and of the ghosts that rank sent here, each in the order sent.
+  std::vector<std::vector<std::uint32_t>> sent_to_;
+  std::vector<std::vector<std::uint32_t>> received_from_;
+  std::uint64_t migrated_ = 0, migrated_contacts_ = 0;
+  bool replicated_ = false;  // until the first build
+};
+
+}  // namespace regodem

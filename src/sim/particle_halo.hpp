@@ -1,0 +1,37 @@
+#pragma once
+// The other ranks of a run split over MPI (issue 19), as the step sees them. Each rank
+// steps its own particles, those in its brick, with copies of the other ranks' particles
+// near its brick (ghosts) as their contact partners. The neighbour lists are rebuilt on
+// every rank at the same step, and then particles move to the rank of their brick with
+// the contact history they own. The step knows nothing of MPI: src/parallel/mpi/
+// implements this (HaloExchange).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "contact/neighbor_list.hpp"
+#include "core/particle_store.hpp"
+
+namespace regodem {
+
+class ParticleHalo {
+ public:
+  virtual ~ParticleHalo() = default;
+  /// True when any rank's `mine` is (one decision for all ranks).
+  virtual bool any_rank(bool mine) = 0;
+  /// The sum over the ranks.
+  virtual std::size_t sum_over_ranks(std::size_t mine) = 0;
+  /// At a neighbour build. `particles` holds this rank's own particles and `history`
+  /// their contact history, owner for particle. Sends the particles outside this rank's
+  /// brick to their ranks with their history and appends those that arrive, then
+  /// appends copies of the other ranks' particles within reach with the history they
+  /// own; `is_ghost` gets one flag per particle.
+  virtual void redistribute(ParticleStore& particles, ContactHistoryByOwner& history,
+                            std::vector<std::uint8_t>& is_ghost) = 0;
+  /// The build sorted the particles: the one now at index i was at order[i].
+  virtual void follow_sort(const std::vector<std::uint32_t>& order) = 0;
+  /// Between builds, after the particles moved: each ghost's changing fields from its rank.
+  virtual void refresh_ghosts(ParticleStore& particles) = 0;
+};
+
+}  // namespace regodem

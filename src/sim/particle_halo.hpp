@@ -7,6 +7,8 @@
 // implements this (HaloExchange).
 #include <cstddef>
 #include <cstdint>
+#include <exception>
+#include <span>
 #include <vector>
 
 #include "contact/neighbor_list.hpp"
@@ -17,16 +19,26 @@ namespace regodem {
 class ParticleHalo {
  public:
   virtual ~ParticleHalo() = default;
-  /// True when any rank's `mine` is (one decision for all ranks).
-  virtual bool any_rank(bool mine) = 0;
+  /// True when any rank's `mine` is (one decision for all ranks). When a rank brings an
+  /// error, every rank throws the error of the lowest such rank (Communicator::agree), so
+  /// that no rank waits for one that has stopped.
+  virtual bool any_rank(bool mine, const std::exception_ptr& error) = 0;
+  /// The same for an error alone.
+  virtual void agree(const std::exception_ptr& error) = 0;
   /// The sum over the ranks.
   virtual std::size_t sum_over_ranks(std::size_t mine) = 0;
-  /// At a neighbour build. `particles` holds this rank's own particles and `history`
-  /// their contact history, owner for particle. Sends the particles outside this rank's
-  /// brick to their ranks with their history and appends those that arrive, then
-  /// appends copies of the other ranks' particles within reach with the history they
-  /// own; `is_ghost` gets one flag per particle.
-  virtual void redistribute(ParticleStore& particles, ContactHistoryByOwner& history,
+  /// Replaces each value by its sum over the ranks, added in rank order, the same bits on
+  /// every rank (the walls' forces and heat, the contact totals).
+  virtual void sum_in_rank_order(std::span<double> values) = 0;
+  /// The largest value over the ranks.
+  virtual double max_over_ranks(double mine) = 0;
+  /// At a neighbour build. `particles` holds this rank's own particles, `history` their
+  /// contact history and `work` what each costs a step (its list entries), particle for
+  /// particle. Cuts the domain again where the work is uneven over the ranks, sends the
+  /// particles outside this rank's brick to their ranks with their history and appends
+  /// those that arrive, then appends copies of the other ranks' particles within reach
+  /// with the history they own; `is_ghost` gets one flag per particle.
+  virtual void redistribute(ParticleStore& particles, ContactHistoryByOwner& history, const std::vector<double>& work,
                             std::vector<std::uint8_t>& is_ghost) = 0;
   /// The build sorted the particles: the one now at index i was at order[i].
   virtual void follow_sort(const std::vector<std::uint32_t>& order) = 0;

@@ -210,16 +210,34 @@ void Simulation::ensure_forces() {
 
 void Simulation::step() {
   ensure_forces();
-  const double max_displacement_ratio2 = first_half_kick_and_drift();
+  // Under MPI a blow-up on one rank is raised on every rank at the next decision they all
+  // take, so that none waits for a rank that has stopped.
+  std::exception_ptr failed;
+  double max_displacement_ratio2 = 0.0;
+  try {
+    max_displacement_ratio2 = first_half_kick_and_drift();
+  } catch (const SimulationError&) {
+    if (!halo_) throw;
+    failed = std::current_exception();
+  }
   walls.advance(time_s_, settings_.time_step_s);
   time_s_ += settings_.time_step_s;
   ++step_;
-  if (rebuild_everywhere(neighbors_.needs_rebuild(particles.size(), max_displacement_ratio2, walls)))
+  if (rebuild_everywhere(neighbors_.needs_rebuild(particles.size(), max_displacement_ratio2, walls), failed))
     rebuild_neighbors();
   else if (halo_)
     halo_->refresh_ghosts(particles);
   compute_forces(settings_.time_step_s);
-  second_half_kick();
+  if (halo_) {
+    try {
+      second_half_kick();
+    } catch (const SimulationError&) {
+      failed = std::current_exception();
+    }
+    halo_->agree(failed);
+  } else {
+    second_half_kick();
+  }
   book_mechanical_energy(settings_.time_step_s);
   if (heat_enabled()) update_temperatures(settings_.time_step_s);
 }
@@ -260,8 +278,10 @@ void Simulation::book_end_of_step_losses() {
   double* __restrict block_node = block_node_end_of_step_W_.data();
   const double* __restrict own_spin = own_spin_resistance_N_m_.data();
   const Vec3* __restrict own_spin_torque = own_spin_torque_N_m_.data();
+  const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
 #pragma omp parallel for schedule(static, block_size) num_threads(active_threads_) if (n > 4096)
   for (std::size_t p = 0; p < n; ++p) {
+    if (ghost && ghost[p]) continue;  // its own rank books it
     const LossyActions& a = lossy[p];
     const Vec3 velocity_change = force[p] * (half_dt * inv_mass[p]);
     const Vec3 spin_change = torque[p] * (half_dt * inv_inertia[p]);
@@ -541,6 +561,7 @@ void Simulation::compute_forces(double slip_time_s) {
   }
   impact.time_s = time_s_;
   fastest_impact_.merge(impact);
+  if (halo_) sum_totals_over_ranks();
 }
 
 template <bool Heat, bool Audit>
@@ -640,6 +661,11 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       wall_contact_heat_[node] = WallContactHeat::of(wall_thermal[b], node - node_begin[b]);
   const WallContactHeat* wall_heat = wall_contact_heat_.data();
 
+  // Under MPI a ghost owner's contacts count only for its partners of this rank: its
+  // contacts with ghosts and walls are its own rank's, and so are its pairs' energies and
+  // counts (each contact is then counted once over the ranks).
+  const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
+
   // Pass 1, each thread over its owners: every contact's action on the owner is summed
   // here, its share for the partner written to the pair's entry, and wall sums go to
   // the owner's block. Pass 2, after the barrier: each particle gathers its shares as a
@@ -660,6 +686,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     std::vector<char>& touched = mesh_scratch_[t].touched;
 
     for (std::uint32_t i = begin; i < end; ++i) {
+      const bool ghost_i = ghost && ghost[i];
+      const std::uint64_t particle_contacts_before = particle_contacts;
       const Vec3 xi = x[i], vi = v[i], wi = w[i];
       const double ri = radius[i], inv_mi = inv_mass[i], inv_ii = inv_inertia[i];
       const MaterialIndex mat_i = material[i];
@@ -679,6 +707,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 
       for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
         const std::uint32_t j = partner[k];
+        if (ghost_i && ghost[j]) continue;
         const Vec3 d = x[j] - xi;
         const double rj = radius[j];
         const double sum_r = ri + rj;
@@ -834,7 +863,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             cross(contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
       };
 
-      for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k) {
+      const std::uint32_t wall_end = ghost_i ? wall_offset[i] : wall_offset[i + 1];
+      for (std::uint32_t k = wall_offset[i]; k < wall_end; ++k) {
         const WallPrimitive& wall = primitives[wall_primitive[k]];
         const WallProximity prox = closest_wall_point(wall, xi);
         if (!prox.candidate || prox.distance_m >= ri) {
@@ -857,7 +887,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       // Mesh walls: the entries of one mesh form a run; its touches are counted once
       // per face, edge or vertex (MeshTouchFinder). Most particles have none: the test
       // saves the call (1 % of the pass in a profile).
-      if (neighbors_.mesh_offset[i] != neighbors_.mesh_offset[i + 1]) {
+      if (!ghost_i && neighbors_.mesh_offset[i] != neighbors_.mesh_offset[i + 1]) {
         for_each_mesh_run(neighbors_, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
           const MeshWall& mesh = meshes[wall_index];
           finder.find(mesh, bodies[mesh.body].pose, mesh_triangle + g, g_end - g, xi, ri, touches);
@@ -894,6 +924,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       torque[i] = torque_i;
       own_spin[i] = own_spin_i;
       if constexpr (Heat) heat[i] = heat_i;
+      if (ghost_i) {
+        particle_contacts = particle_contacts_before;
+        continue;
+      }
       BlockEnergy& energy = block_energy[i / block_size];
       energy.generated_heat_W += generated_i;
       energy.dissipated_W += dissipated_i;
@@ -962,29 +996,31 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 double Simulation::translational_kinetic_energy_J() const {
   double sum = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i)
-    if (particles.inv_mass_per_kg[i] > 0.0) sum += 0.5 * particles.mass_kg[i] * norm2(particles.velocity_m_per_s[i]);
-  return sum;
+    if (particles.inv_mass_per_kg[i] > 0.0 && !is_ghost(i))
+      sum += 0.5 * particles.mass_kg[i] * norm2(particles.velocity_m_per_s[i]);
+  return total_over_ranks(sum);
 }
 
 double Simulation::rotational_kinetic_energy_J() const {
   double sum = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i)
-    if (particles.inv_inertia[i] > 0.0)
+    if (particles.inv_inertia[i] > 0.0 && !is_ghost(i))
       sum += 0.5 * norm2(particles.angular_velocity_rad_per_s[i]) / particles.inv_inertia[i];
-  return sum;
+  return total_over_ranks(sum);
 }
 
 double Simulation::gravitational_potential_energy_J() const {
   double sum = 0.0;
   for (std::size_t i = 0; i < particles.size(); ++i)
-    sum -= particles.mass_kg[i] * dot(settings_.gravity_m_per_s2, particles.position_m[i]);
-  return sum;
+    if (!is_ghost(i)) sum -= particles.mass_kg[i] * dot(settings_.gravity_m_per_s2, particles.position_m[i]);
+  return total_over_ranks(sum);
 }
 
 double Simulation::max_speed_m_per_s() const {
   double largest2 = 0.0;
-  for (const Vec3& v : particles.velocity_m_per_s) largest2 = std::max(largest2, norm2(v));
-  return std::sqrt(largest2);
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (!is_ghost(i)) largest2 = std::max(largest2, norm2(particles.velocity_m_per_s[i]));
+  return largest_over_ranks(std::sqrt(largest2));
 }
 
 double Simulation::max_overlap_fraction() const {
@@ -993,15 +1029,15 @@ double Simulation::max_overlap_fraction() const {
   // Not built for these particles yet (the t = 0 sample after an insertion): search
   // them directly, so that a packing that starts overlapped says so.
   if (nl.offset.size() != particles.size() + 1)
-    return deepest_overlap(particles.position_m, particles.radius_m).fraction;
+    return largest_over_ranks(deepest_overlap(particles.position_m, particles.radius_m).fraction);
   for (std::size_t i = 0; i < particles.size(); ++i)
-    for (std::uint32_t k = nl.offset[i]; k < nl.offset[i + 1]; ++k) {
+    for (std::uint32_t k = is_ghost(i) ? nl.offset[i + 1] : nl.offset[i]; k < nl.offset[i + 1]; ++k) {
       const std::uint32_t j = nl.partner[k];
       const double overlap =
           particles.radius_m[i] + particles.radius_m[j] - norm(particles.position_m[j] - particles.position_m[i]);
       largest = std::max(largest, overlap / (2.0 * std::min(particles.radius_m[i], particles.radius_m[j])));
     }
-  return largest;
+  return largest_over_ranks(largest);
 }
 
 }  // namespace regodem

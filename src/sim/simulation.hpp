@@ -2,6 +2,7 @@
 // The simulation state and its time step: particles, materials, walls, neighbour
 // lists, and the velocity-Verlet integrator around one contact pass per step.
 #include <cstdint>
+#include <exception>
 #include <optional>
 #include <string>
 #include <vector>
@@ -140,7 +141,8 @@ class Simulation {
   /// Particles removed on leaving the domain (LostParticles::remove), since the start.
   std::uint64_t lost_particle_count() const { return lost_particle_count_; }
 
-  // Measurements over all particles (each a pass over the arrays).
+  // Measurements over all particles (each a pass over the arrays; under MPI over every
+  // rank's own particles, a collective that every rank calls).
   double translational_kinetic_energy_J() const;
   double rotational_kinetic_energy_J() const;
   double gravitational_potential_energy_J() const;  // -sum m g.x
@@ -223,9 +225,10 @@ class Simulation {
   /// (which must outlive it) brings the other ranks' particles near them: the lists are
   /// rebuilt on every rank at once, and at each build the particles move to the rank of
   /// their brick. What each rank's particles do is then bit for bit what they do in one
-  /// process. Not yet under MPI (InputError): bonds, lumped walls, removing lost
-  /// particles; the totals (energy books, wall forces and heat, contact statistics,
-  /// measurements) still count each rank's contacts with ghosts as its own.
+  /// process. The walls' forces, torques, power and heat and the contact totals of each
+  /// pass are summed over the ranks (in rank order: within round-off of one process's).
+  /// Not yet under MPI (InputError): bonds, removing lost particles; the energy and heat
+  /// ledgers, the fastest impact and the measurements over particles are each rank's.
   void distribute(ParticleHalo* halo);
   /// The particles this simulation steps (all of them in one process).
   std::size_t own_particle_count() const;
@@ -244,11 +247,18 @@ class Simulation {
   void ensure_forces();
   /// history_saved: the contact history was already saved by id (after a removal).
   void rebuild_neighbors(bool history_saved = false);
-  /// Whether the lists must be rebuilt, given this rank's answer (every rank's, under MPI).
-  bool rebuild_everywhere(bool here);
+  /// Whether the lists must be rebuilt, given this rank's answer (every rank's, under MPI,
+  /// where an error met here or on another rank is thrown on all).
+  bool rebuild_everywhere(bool here, const std::exception_ptr& failed = nullptr);
   /// Under MPI, at a build: drops the ghosts and lets the halo move particles and bring
   /// new ghosts, each with the contact history it owns.
   void redistribute_particles();
+  /// Under MPI, after a contact pass: the walls' forces, torques, power and heat and the
+  /// contacts' totals, each rank's own, summed over the ranks.
+  void sum_totals_over_ranks();
+  /// A sum (in rank order) or largest value over the ranks; this rank's in one process.
+  double total_over_ranks(double mine) const;
+  double largest_over_ranks(double mine) const;
   /// Removes the particles outside the domain, their bonds and contact history.
   void remove_lost_particles();
   /// Removes the flagged particles, their bonds and contact history; rebuilds the lists.

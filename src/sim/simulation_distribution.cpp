@@ -15,10 +15,6 @@ void Simulation::distribute(ParticleHalo* halo) {
     throw InputError("bonds are not yet supported in a run over MPI ranks");
   if (settings_.lost_particles == LostParticles::remove)
     throw InputError("domain.lost_particles: remove is not yet supported in a run over MPI ranks");
-  for (std::size_t b = 0; b < wall_thermal.size(); ++b)
-    if (wall_thermal[b].mode == WallThermalMode::lumped)
-      throw InputError(fmt::format("wall '{}' is lumped: lumped walls are not yet supported in a run over MPI ranks",
-                                   walls.bodies[b].name));
   halo_ = halo;
   halo_build_pending_ = halo != nullptr;
   // The next build makes the grid afresh for all ranks' particles (the lists' order, and
@@ -42,23 +38,80 @@ double Simulation::ghost_reach_m(double largest_radius_m) const {
   return 2.0 * largest_radius_m + 2.0 * largest_half_m;
 }
 
-bool Simulation::rebuild_everywhere(bool here) {
-  if (!halo_) return here;
+bool Simulation::rebuild_everywhere(bool here, const std::exception_ptr& failed) {
+  if (!halo_) {
+    if (failed) std::rethrow_exception(failed);
+    return here;
+  }
   // The lists' validity is each rank's, the rebuild every rank's: one rank's grains moving
   // rebuilds all, as in one process.
-  return halo_->any_rank(here || halo_build_pending_);
+  return halo_->any_rank(here || halo_build_pending_, failed);
 }
 
 void Simulation::redistribute_particles() {
   neighbors_.save_history(particles);
   ghost_.resize(particles.size(), 0);
   ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
+  // Each own particle's work: its list entries as owner and as partner, and itself.
+  const NeighborList& nl = neighbors_;
+  const bool listed = nl.offset.size() == particles.size() + 1 && nl.owner_offset.size() == particles.size() + 1;
+  std::vector<double> work;
+  work.reserve(particles.size());
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (!ghost_[i])
+      work.push_back(listed ? 1.0 + (nl.offset[i + 1] - nl.offset[i]) + (nl.owner_offset[i + 1] - nl.owner_offset[i])
+                            : 1.0);
   particles.remove_if(std::vector<char>(ghost_.begin(), ghost_.end()));
-  halo_->redistribute(particles, history, ghost_);
+  halo_->redistribute(particles, history, work, ghost_);
   if (ghost_.size() != particles.size() || history.owners() != particles.size())
     throw SimulationError(fmt::format("the halo returned {} particles with {} ghost flags and {} histories",
                                       particles.size(), ghost_.size(), history.owners()));
   neighbors_.set_saved_history(std::move(history));
 }
+
+void Simulation::sum_totals_over_ranks() {
+  // One message a pass: every total packed, summed, unpacked.
+  std::vector<double> totals;
+  const auto pack = [&totals](double value) { totals.push_back(value); };
+  for (std::size_t b = 0; b < walls.bodies.size(); ++b) {
+    for (const Vec3& v : {walls.bodies[b].force_N, walls.bodies[b].torque_N_m}) {
+      pack(v.x);
+      pack(v.y);
+      pack(v.z);
+    }
+  }
+  for (const std::vector<double>* values : {&wall_power_W_, &wall_generated_heat_W_, &node_heat_in_W_})
+    for (const double value : *values) pack(value);
+  for (const ThermalWall& wall : wall_thermal) pack(wall.heat_flow_to_particles_W);
+  for (const double value : {generated_heat_W_, dissipated_power_W_, contact_elastic_energy_J_, spring_source_W_,
+                             static_cast<double>(stats_.particle_contacts), static_cast<double>(stats_.wall_contacts)})
+    pack(value);
+
+  halo_->sum_in_rank_order(totals);
+
+  std::size_t at = 0;
+  const auto take = [&totals, &at]() { return totals[at++]; };
+  for (WallBody& body : walls.bodies)
+    for (Vec3* v : {&body.force_N, &body.torque_N_m}) {
+      v->x = take();
+      v->y = take();
+      v->z = take();
+    }
+  for (std::vector<double>* values : {&wall_power_W_, &wall_generated_heat_W_, &node_heat_in_W_})
+    for (double& value : *values) value = take();
+  for (ThermalWall& wall : wall_thermal) wall.heat_flow_to_particles_W = take();
+  for (double* value : {&generated_heat_W_, &dissipated_power_W_, &contact_elastic_energy_J_, &spring_source_W_})
+    *value = take();
+  // Counts below 2^53 are exact as doubles.
+  stats_.particle_contacts = static_cast<std::uint64_t>(take());
+  stats_.wall_contacts = static_cast<std::uint64_t>(take());
+}
+
+double Simulation::total_over_ranks(double mine) const {
+  if (halo_) halo_->sum_in_rank_order(std::span<double>(&mine, 1));
+  return mine;
+}
+
+double Simulation::largest_over_ranks(double mine) const { return halo_ ? halo_->max_over_ranks(mine) : mine; }
 
 }  // namespace regodem

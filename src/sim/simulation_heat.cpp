@@ -22,8 +22,10 @@ double Simulation::particle_thermal_energy_J(std::size_t i) const {
 
 double Simulation::thermal_energy_J() const {
   double sum = 0.0;
-  for (std::size_t i = 0; i < particles.size(); ++i) sum += particle_thermal_energy_J(i);
-  for (const ThermalWall& w : wall_thermal) sum += w.stored_heat_J();
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (!is_ghost(i)) sum += particle_thermal_energy_J(i);
+  sum = total_over_ranks(sum);
+  for (const ThermalWall& w : wall_thermal) sum += w.stored_heat_J();  // the same on every rank
   return sum;
 }
 

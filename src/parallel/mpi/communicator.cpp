@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 #include <string>
 
@@ -56,6 +57,34 @@ std::uint64_t Communicator::sum(std::uint64_t value) const {
   return total;
 }
 
+std::vector<std::vector<std::byte>> Communicator::gather_to_all(const std::vector<std::byte>& mine) const {
+  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw SimulationError(fmt::format("a message of {} bytes between ranks is larger than MPI's int counts", mine.size()));
+  const int count = static_cast<int>(mine.size());
+  const auto ranks = static_cast<std::size_t>(size_);
+  std::vector<int> counts(ranks), offsets(ranks);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  std::size_t total = 0;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (total > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw SimulationError(fmt::format("{} bytes gathered on every rank are more than MPI's int counts", total));
+    offsets[r] = static_cast<int>(total);
+    total += static_cast<std::size_t>(counts[r]);
+  }
+  std::vector<std::byte> all(total);
+  MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, comm_);
+  std::vector<std::vector<std::byte>> by_rank(ranks);
+  for (std::size_t r = 0; r < ranks; ++r)
+    by_rank[r].assign(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
+  return by_rank;
+}
+
+double Communicator::max(double value) const {
+  double largest = 0.0;
+  MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return largest;
+}
+
 std::vector<std::vector<std::byte>> Communicator::gather(const std::vector<std::byte>& mine, int root) const {
   if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw SimulationError(fmt::format("a message of {} bytes between ranks is larger than MPI's int counts", mine.size()));
@@ -83,34 +112,66 @@ double Communicator::broadcast(double value, int root) const {
   return value;
 }
 
-void Communicator::agree(const std::exception_ptr& error) const {
-  enum Kind : int { input = 1, simulation = 2, other = 3 };
-  int kind = 0;
-  std::string message;
-  if (error) {
-    try {
-      std::rethrow_exception(error);
-    } catch (const InputError& e) {
-      kind = input, message = e.what();
-    } catch (const SimulationError& e) {
-      kind = simulation, message = e.what();
-    } catch (const std::exception& e) {
-      kind = other, message = e.what();
-    } catch (...) {
-      kind = other, message = "an unknown error";
-    }
+namespace {
+
+enum ErrorKind : int { no_error = 0, input_error = 1, simulation_error = 2, other_error = 3 };
+
+// The kind and message of an error (none: no_error).
+ErrorKind describe(const std::exception_ptr& error, std::string& message) {
+  if (!error) return no_error;
+  try {
+    std::rethrow_exception(error);
+  } catch (const InputError& e) {
+    message = e.what();
+    return input_error;
+  } catch (const SimulationError& e) {
+    message = e.what();
+    return simulation_error;
+  } catch (const std::exception& e) {
+    message = e.what();
+    return other_error;
+  } catch (...) {
+    message = "an unknown error";
+    return other_error;
   }
-  int first_failed = kind ? rank_ : size_;
-  MPI_Allreduce(MPI_IN_PLACE, &first_failed, 1, MPI_INT, MPI_MIN, comm_);
-  if (first_failed == size_) return;
+}
+
+}  // namespace
+
+void Communicator::agree(const std::exception_ptr& error) const { any_rank(false, error); }
+
+bool Communicator::any_rank(bool mine, const std::exception_ptr& error) const {
+  std::string message;
+  const ErrorKind kind = describe(error, message);
+  // One collective for both: the lowest failing rank and, negated, the largest vote.
+  int reduced[2] = {kind != no_error ? rank_ : size_, mine ? -1 : 0};
+  MPI_Allreduce(MPI_IN_PLACE, reduced, 2, MPI_INT, MPI_MIN, comm_);
+  const int first_failed = reduced[0];
+  if (first_failed == size_) return reduced[1] < 0;
   int header[2] = {kind, static_cast<int>(message.size())};
   MPI_Bcast(header, 2, MPI_INT, first_failed, comm_);
   message.resize(static_cast<std::size_t>(header[1]));
   MPI_Bcast(message.data(), header[1], MPI_CHAR, first_failed, comm_);
   if (size_ > 1) message = fmt::format("rank {}: {}", first_failed, message);
-  if (header[0] == input) throw InputError(message);
-  if (header[0] == simulation) throw SimulationError(message);
+  if (header[0] == input_error) throw InputError(message);
+  if (header[0] == simulation_error) throw SimulationError(message);
   throw std::runtime_error(message);
+}
+
+void Communicator::sum_in_rank_order(std::span<double> values) const {
+  if (values.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / std::max(size_, 1)))
+    throw SimulationError(fmt::format("{} values to sum over {} ranks are more than MPI's int counts", values.size(),
+                                      size_));
+  const int count = static_cast<int>(values.size());
+  std::vector<double> all(rank_ == 0 ? values.size() * static_cast<std::size_t>(size_) : 0);
+  MPI_Gather(values.data(), count, MPI_DOUBLE, all.data(), count, MPI_DOUBLE, 0, comm_);
+  if (rank_ == 0)
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      double sum = 0.0;
+      for (std::size_t r = 0; r < static_cast<std::size_t>(size_); ++r) sum += all[r * values.size() + k];
+      values[k] = sum;
+    }
+  MPI_Bcast(values.data(), count, MPI_DOUBLE, 0, comm_);
 }
 
 }  // namespace regodem

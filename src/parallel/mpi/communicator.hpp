@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <span>
 #include <vector>
 
 namespace regodem {
@@ -22,16 +23,25 @@ class Communicator {
   std::vector<std::vector<std::byte>> exchange(const std::vector<std::vector<std::byte>>& to_rank) const;
   /// The sum over the ranks.
   std::uint64_t sum(std::uint64_t value) const;
+  /// The largest over the ranks.
+  double max(double value) const;
   /// Every rank's bytes on rank `root`, by rank (the other ranks get nothing).
   std::vector<std::vector<std::byte>> gather(const std::vector<std::byte>& mine, int root) const;
+  /// Every rank's bytes on every rank, by rank.
+  std::vector<std::vector<std::byte>> gather_to_all(const std::vector<std::byte>& mine) const;
   /// Root's value on every rank.
   double broadcast(double value, int root) const;
+  /// Replaces each value by its sum over the ranks, added in rank order on rank 0 and sent
+  /// to all: the same bits on every rank, and on every run with this many ranks.
+  void sum_in_rank_order(std::span<double> values) const;
   /// A point every rank reaches with the error it met since the last one (or none).
   /// When any rank brings one, every rank throws the error of the lowest such rank, its
   /// kind kept (InputError, SimulationError, else std::runtime_error) and its message
   /// prefixed by "rank R: " on more than one rank: all ranks stop with the message of
   /// the rank that failed, and none waits for a rank that has stopped.
   void agree(const std::exception_ptr& error) const;
+  /// Whether any rank's `mine` is true, and agree(error), in one collective.
+  bool any_rank(bool mine, const std::exception_ptr& error) const;
 
  private:
   MPI_Comm comm_;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "core/error.hpp"
@@ -78,14 +79,52 @@ void remove_history(ContactHistoryByOwner& history, const std::vector<char>& rem
 
 }  // namespace
 
-HaloExchange::HaloExchange(const Communicator& comm, RecursiveBisection bricks, double reach_m, Start start)
-    : comm_(comm), bricks_(std::move(bricks)), reach_m_(reach_m), replicated_(start == Start::replicated) {
+HaloExchange::HaloExchange(const Communicator& comm, RecursiveBisection bricks, double reach_m, Start start,
+                           double imbalance)
+    : comm_(comm),
+      bricks_(std::move(bricks)),
+      domain_(bricks_.brick(0)),
+      reach_m_(reach_m),
+      imbalance_(imbalance),
+      replicated_(start == Start::replicated) {
   if (bricks_.ranks() != comm_.size())
     throw SimulationError(fmt::format("{} bricks for {} ranks", bricks_.ranks(), comm_.size()));
   if (!(reach_m_ > 0.0)) throw SimulationError(fmt::format("a ghost reach of {} m", reach_m_));
+  if (!(imbalance_ >= 0.0)) throw SimulationError(fmt::format("an allowed imbalance of {}", imbalance_));
+  for (int r = 1; r < bricks_.ranks(); ++r) {
+    const Brick& b = bricks_.brick(r);
+    domain_.lo_m = {std::min(domain_.lo_m.x, b.lo_m.x), std::min(domain_.lo_m.y, b.lo_m.y),
+                    std::min(domain_.lo_m.z, b.lo_m.z)};
+    domain_.hi_m = {std::max(domain_.hi_m.x, b.hi_m.x), std::max(domain_.hi_m.y, b.hi_m.y),
+                    std::max(domain_.hi_m.z, b.hi_m.z)};
+  }
 }
 
-bool HaloExchange::any_rank(bool mine) { return comm_.sum(mine ? 1u : 0u) > 0; }
+void HaloExchange::rebalance(const ParticleStore& particles, const std::vector<double>& work) {
+  if (comm_.size() == 1) return;
+  double mine = 0.0;
+  for (const double w : work) mine += w;
+  double total = mine;
+  comm_.sum_in_rank_order(std::span<double>(&total, 1));
+  const double busiest = comm_.max(mine);
+  if (!(busiest > (1.0 + imbalance_) * total / comm_.size())) return;
+  // Every rank's particles and work on every rank, by rank: the same cuts everywhere.
+  std::vector<std::byte> bytes(particles.size() * (sizeof(Vec3) + sizeof(double)));
+  std::memcpy(bytes.data(), particles.position_m.data(), particles.size() * sizeof(Vec3));
+  std::memcpy(bytes.data() + particles.size() * sizeof(Vec3), work.data(), work.size() * sizeof(double));
+  std::vector<Vec3> points;
+  std::vector<double> weights;
+  for (const std::vector<std::byte>& from : comm_.gather_to_all(bytes)) {
+    const std::size_t count = from.size() / (sizeof(Vec3) + sizeof(double));
+    const std::size_t first = points.size();
+    points.resize(first + count);
+    weights.resize(first + count);
+    std::memcpy(points.data() + first, from.data(), count * sizeof(Vec3));
+    std::memcpy(weights.data() + first, from.data() + count * sizeof(Vec3), count * sizeof(double));
+  }
+  bricks_ = RecursiveBisection(domain_, points, weights, comm_.size());
+  ++rebalances_;
+}
 
 std::size_t HaloExchange::sum_over_ranks(std::size_t mine) { return comm_.sum(mine); }
 
@@ -96,11 +135,14 @@ std::size_t HaloExchange::ghost_count() const {
 }
 
 void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner& history,
-                                std::vector<std::uint8_t>& is_ghost) {
+                                const std::vector<double>& work, std::vector<std::uint8_t>& is_ghost) {
   const auto ranks = static_cast<std::size_t>(comm_.size());
   const int me = comm_.rank();
-  if (history.owners() != particles.size())
-    throw SimulationError(fmt::format("{} particles with {} contact histories", particles.size(), history.owners()));
+  if (history.owners() != particles.size() || work.size() != particles.size())
+    throw SimulationError(fmt::format("{} particles with {} contact histories and {} costs", particles.size(),
+                                      history.owners(), work.size()));
+  // Every rank holds all particles before a replicated start: nothing to weigh yet.
+  if (!replicated_) rebalance(particles, work);
 
   // Each particle to the rank of its brick, with the contact history it owns.
   std::vector<std::vector<std::uint32_t>> to_rank(ranks);
@@ -128,13 +170,16 @@ void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner&
     unpack_with_history(comm_.exchange(messages), ParticleTransfer::migration, particles, history);
   }
   const std::size_t own = particles.size();
-  // A particle outside every brick (the bricks do not tile the domain) would miss partners.
-  for (std::size_t p = 0; p < own; ++p)
+  // A particle outside every brick (the bricks do not tile the domain) would miss partners;
+  // the error stops every rank.
+  std::exception_ptr outside;
+  for (std::size_t p = 0; p < own && !outside; ++p)
     if (bricks_.brick(me).distance_m(particles.position_m[p]) > 0.0)
-      throw SimulationError(fmt::format("particle {} at ({:.6g}, {:.6g}, {:.6g}) m lies outside every rank's brick: "
-                                        "the bricks must tile the run's domain",
-                                        particles.id[p], particles.position_m[p].x, particles.position_m[p].y,
-                                        particles.position_m[p].z));
+      outside = std::make_exception_ptr(SimulationError(fmt::format(
+          "particle {} at ({:.6g}, {:.6g}, {:.6g}) m lies outside every rank's brick: the bricks must tile the run's "
+          "domain",
+          particles.id[p], particles.position_m[p].x, particles.position_m[p].y, particles.position_m[p].z)));
+  comm_.agree(outside);
 
   // Ghosts: copies of each particle within reach of another rank's brick.
   sent_to_.assign(ranks, {});

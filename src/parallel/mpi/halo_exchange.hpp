@@ -21,12 +21,19 @@ class HaloExchange final : public ParticleHalo {
   /// those of its brick with the contact history they own, and nothing is sent).
   enum class Start { spread, replicated };
   /// reach_m: Simulation::ghost_reach_m for the largest particle. `comm` must outlive it.
-  /// The bricks must tile the run's domain.
-  HaloExchange(const Communicator& comm, RecursiveBisection bricks, double reach_m, Start start = Start::spread);
+  /// The bricks must tile the run's domain. At a build where the busiest rank has more
+  /// than (1 + imbalance) x the mean work, the domain is cut again by everyone's particles
+  /// weighted by their work (the same bricks on every rank: the cuts do not depend on the
+  /// points' order); the bricks change where each particle is stepped, not its result.
+  HaloExchange(const Communicator& comm, RecursiveBisection bricks, double reach_m, Start start = Start::spread,
+               double imbalance = 0.1);
 
-  bool any_rank(bool mine) override;
+  bool any_rank(bool mine, const std::exception_ptr& error) override { return comm_.any_rank(mine, error); }
+  void agree(const std::exception_ptr& error) override { comm_.agree(error); }
   std::size_t sum_over_ranks(std::size_t mine) override;
-  void redistribute(ParticleStore& particles, ContactHistoryByOwner& history,
+  void sum_in_rank_order(std::span<double> values) override { comm_.sum_in_rank_order(values); }
+  double max_over_ranks(double mine) override { return comm_.max(mine); }
+  void redistribute(ParticleStore& particles, ContactHistoryByOwner& history, const std::vector<double>& work,
                     std::vector<std::uint8_t>& is_ghost) override;
   void follow_sort(const std::vector<std::uint32_t>& order) override;
   void refresh_ghosts(ParticleStore& particles) override;
@@ -37,11 +44,19 @@ class HaloExchange final : public ParticleHalo {
   std::uint64_t migrated_count() const { return migrated_; }
   std::uint64_t migrated_contact_count() const { return migrated_contacts_; }
   std::size_t ghost_count() const;
+  /// How often the domain was cut again.
+  std::uint64_t rebalance_count() const { return rebalances_; }
 
  private:
   const Communicator& comm_;
+  /// Cuts the domain again when the work is uneven (see the constructor).
+  void rebalance(const ParticleStore& particles, const std::vector<double>& work);
+
   RecursiveBisection bricks_;
+  Brick domain_;  // what the bricks tile
   double reach_m_;
+  double imbalance_;
+  std::uint64_t rebalances_ = 0;
   // Since the last build, by rank: the indices of this rank's particles it sent that rank
   // as ghosts, and of the ghosts that rank sent here, each in the order sent.
   std::vector<std::vector<std::uint32_t>> sent_to_;

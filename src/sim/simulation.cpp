@@ -135,6 +135,7 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
 }
 
 void Simulation::add_particle(const NewParticle& p) {
+  refuse_under_ranks("adding particles");
   const std::size_t i = particles.add(p);
   particles.conductivity_W_per_mK[i] = materials[p.material].conductivity_W_per_mK.at(p.temperature_K);
   if (heat_enabled()) ledger_.reference_energy_J += particle_thermal_energy_J(i);
@@ -342,6 +343,7 @@ double Simulation::particle_mechanical_energy_J(std::size_t i) const {
 
 void Simulation::set_particle_velocity(std::size_t i, const Vec3& velocity_m_per_s,
                                        const Vec3& angular_velocity_rad_per_s) {
+  refuse_under_ranks("setting a particle's velocity");
   const bool finite = std::isfinite(norm2(velocity_m_per_s)) && std::isfinite(norm2(angular_velocity_rad_per_s));
   if (!finite) throw InputError(fmt::format("particle {}: a velocity and spin must be finite", particles.id[i]));
   if (particles.inv_mass_per_kg[i] == 0.0)
@@ -464,6 +466,7 @@ void Simulation::drop_particles(const std::vector<char>& flags) {
 }
 
 void Simulation::remove_particles(const std::vector<char>& remove_flag) {
+  refuse_under_ranks("removing particles");
   if (std::find(remove_flag.begin(), remove_flag.end(), 1) == remove_flag.end()) return;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     if (!remove_flag[i]) continue;

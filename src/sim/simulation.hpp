@@ -225,7 +225,8 @@ class Simulation {
   /// (which must outlive it) brings the other ranks' particles near them: the lists are
   /// rebuilt on every rank at once, and at each build the particles move to the rank of
   /// their brick. What each rank's particles do is then bit for bit what they do in one
-  /// process. The walls' forces, torques, power and heat and the contact totals of each
+  /// process. Adding or removing particles and setting a velocity between steps are not
+  /// yet over ranks (InputError). The walls' forces, torques, power and heat and the contact totals of each
   /// pass are summed over the ranks (in rank order: within round-off of one process's).
   /// Not yet under MPI (InputError): bonds, removing lost particles; the energy and heat
   /// ledgers, the fastest impact and the measurements over particles are each rank's.
@@ -253,6 +254,9 @@ class Simulation {
   /// Under MPI, at a build: drops the ghosts and lets the halo move particles and bring
   /// new ghosts, each with the contact history it owns.
   void redistribute_particles();
+  /// Throws InputError under MPI: `what` changes one rank's particles between steps, and
+  /// the next step's decisions would then not be every rank's (not yet over ranks).
+  void refuse_under_ranks(const char* what) const;
   /// Under MPI, after a contact pass: the walls' forces, torques, power and heat and the
   /// contacts' totals, each rank's own, summed over the ranks.
   void sum_totals_over_ranks();

@@ -25,6 +25,10 @@ void Simulation::distribute(ParticleHalo* halo) {
   forces_current_ = false;
 }
 
+void Simulation::refuse_under_ranks(const char* what) const {
+  if (halo_) throw InputError(fmt::format("{} is not yet supported in a run over MPI ranks", what));
+}
+
 std::size_t Simulation::own_particle_count() const {
   return particles.size() - static_cast<std::size_t>(std::count(ghost_.begin(), ghost_.end(), std::uint8_t{1}));
 }

@@ -59,15 +59,7 @@ Simulation falling_cup(SphereMaterial& m, Cup kind = Cup::held_at_400K) {
   }
   Simulation sim(one_material(m), walls, settings, {cup});
   Rng rng(17);
-  for (int i = 0; i < 8; ++i)
-    for (int j = 0; j < 8; ++j)
-      for (int k = 0; k < 10; ++k) {
-        const Vec3 x{(i - 3.5) * 1.0e-3, (j - 3.5) * 1.0e-3, -0.0094 + k * 1.0e-3};
-        NewParticle p = sphere(x, {0.5 + rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)},
-                               kRadius * rng.uniform(0.9, 1.0), m.density, rng.uniform(100.0, 300.0));
-        p.angular_velocity_rad_per_s = {rng.uniform(-10, 10), rng.uniform(-10, 10), rng.uniform(-10, 10)};
-        sim.add_particle(p);
-      }
+  testing::add_grain_lattice(sim, rng, kRadius, m.density, {0.5, 0.0, 0.0}, 0.3, 0.9);
   return sim;
 }
 
@@ -246,6 +238,22 @@ TEST(DistributedStep, AGrainThrownOutOnOneRankStopsEveryRankWithItsMessage) {
       EXPECT_EQ(message.rfind("rank " + std::to_string(thrower) + ": ", 0), 0u) << message;
     }
   }
+}
+
+// What would change one rank's particles between steps, so that the ranks' next decisions
+// differ (and one would wait for the others), is refused until it is done over ranks.
+TEST(DistributedStep, ChangesToOneRanksParticlesBetweenStepsAreRefused) {
+  SphereMaterial m;
+  SplitRun split(falling_cup(m), 0, 1);
+  Simulation& sim = split.sim;
+  EXPECT_THROW(sim.add_particle(testing::sphere({0, 0, 0.01}, {}, kRadius, m.density, 200.0)), InputError);
+  EXPECT_THROW(sim.remove_particles(std::vector<char>(sim.particles.size(), 1)), InputError);
+  if (sim.own_particle_count() > 0) {
+    std::size_t own = 0;
+    while (sim.is_ghost(own)) ++own;
+    EXPECT_THROW(sim.set_particle_velocity(own, {}, {}), InputError);
+  }
+  sim.advance(1);  // and the ranks go on together
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "core/rng.hpp"
 #include "geometry/triangle_mesh.hpp"
 #include "sim/simulation.hpp"
 #include "sim/time_step.hpp"
@@ -134,6 +135,26 @@ inline NewParticle sphere(const Vec3& x, const Vec3& v, double radius, double de
   p.radius_m = radius;
   p.density_kg_per_m3 = density;
   return p;
+}
+
+/// An 8 x 8 x 10 lattice of grains 1 mm apart above z = -9.4 mm, each with a random
+/// velocity (mean_velocity plus up to +-velocity_spread per component), spin (+-10 rad/s),
+/// radius (radius times uniform(smallest_fraction, 1)) and temperature (100-300 K).
+inline void add_grain_lattice(Simulation& sim, Rng& rng, double radius, double density, const Vec3& mean_velocity,
+                              double velocity_spread, double smallest_fraction) {
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j)
+      for (int k = 0; k < 10; ++k) {
+        const Vec3 x{(i - 3.5) * 1.0e-3, (j - 3.5) * 1.0e-3, -0.0094 + k * 1.0e-3};
+        const Vec3 v = mean_velocity + Vec3{rng.uniform(-velocity_spread, velocity_spread),
+                                            rng.uniform(-velocity_spread, velocity_spread),
+                                            rng.uniform(-velocity_spread, velocity_spread)};
+        const double r = radius * rng.uniform(smallest_fraction, 1.0);  // the draws in a fixed order
+        const double temperature_K = rng.uniform(100.0, 300.0);
+        NewParticle p = sphere(x, v, r, density, temperature_K);
+        p.angular_velocity_rad_per_s = {rng.uniform(-10, 10), rng.uniform(-10, 10), rng.uniform(-10, 10)};
+        sim.add_particle(p);
+      }
 }
 
 /// The store index of the particle with this id (neighbour rebuilds re-sort the store).

@@ -36,15 +36,7 @@ State run_once() {
   cup.heat_capacity_J_per_K = 0.01;
   Simulation sim(one_material(m), walls, settings, {cup});
   Rng rng(17);
-  for (int i = 0; i < 8; ++i)
-    for (int j = 0; j < 8; ++j)
-      for (int k = 0; k < 10; ++k) {
-        const Vec3 x{(i - 3.5) * 1.0e-3, (j - 3.5) * 1.0e-3, -0.0094 + k * 1.0e-3};
-        NewParticle p = sphere(x, {rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05)}, radius * rng.uniform(0.97, 1.0),
-                               m.density, rng.uniform(100.0, 300.0));
-        p.angular_velocity_rad_per_s = {rng.uniform(-10, 10), rng.uniform(-10, 10), rng.uniform(-10, 10)};
-        sim.add_particle(p);
-      }
+  add_grain_lattice(sim, rng, radius, m.density, {}, 0.05, 0.97);
   sim.advance(8000);
   EXPECT_GT(sim.contact_statistics().particle_contacts, 100u);
   EXPECT_GT(sim.neighbor_list().rebuild_count(), 1u);

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.hpp"
+#include "parallel/mpi/particle_exchange.hpp"
 #include "parallel/particle_transfer.hpp"
 
 namespace regodem {
@@ -145,16 +146,14 @@ void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner&
   if (!replicated_) rebalance(particles, work);
 
   // Each particle to the rank of its brick, with the contact history it owns.
-  std::vector<std::vector<std::uint32_t>> to_rank(ranks);
+  const std::vector<std::vector<std::uint32_t>> to_rank = migration_lists(particles, bricks_, me);
   std::vector<char> leaves(particles.size(), 0);
-  for (std::size_t p = 0; p < particles.size(); ++p) {
-    const int owner = bricks_.rank_of(particles.position_m[p]);
-    if (owner == me) continue;
-    to_rank[static_cast<std::size_t>(owner)].push_back(static_cast<std::uint32_t>(p));
-    leaves[p] = 1;
-    ++migrated_;
-    migrated_contacts_ += history.begin[p + 1] - history.begin[p];
-  }
+  for (const std::vector<std::uint32_t>& list : to_rank)
+    for (const std::uint32_t p : list) {
+      leaves[p] = 1;
+      ++migrated_;
+      migrated_contacts_ += history.begin[p + 1] - history.begin[p];
+    }
   std::vector<std::vector<std::byte>> messages(ranks);
   if (replicated_) {  // the other ranks hold the same particles: keep this brick's
     migrated_ = migrated_contacts_ = 0;
@@ -182,11 +181,7 @@ void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner&
   comm_.agree(outside);
 
   // Ghosts: copies of each particle within reach of another rank's brick.
-  sent_to_.assign(ranks, {});
-  for (std::size_t p = 0; p < own; ++p)
-    for (std::size_t r = 0; r < ranks; ++r)
-      if (static_cast<int>(r) != me && bricks_.brick(static_cast<int>(r)).distance_m(particles.position_m[p]) <= reach_m_)
-        sent_to_[r].push_back(static_cast<std::uint32_t>(p));
+  sent_to_ = ghost_lists(particles, own, bricks_, reach_m_, me);
   for (std::size_t r = 0; r < ranks; ++r)
     messages[r] = sent_to_[r].empty() ? std::vector<std::byte>{}
                                       : pack_with_history(particles, history, sent_to_[r], ParticleTransfer::ghost);

@@ -30,19 +30,34 @@ void unpack_messages(const std::vector<std::vector<std::byte>>& received, Partic
 
 }  // namespace
 
+std::vector<std::vector<std::uint32_t>> migration_lists(const ParticleStore& local, const RecursiveBisection& bricks,
+                                                        int this_rank) {
+  std::vector<std::vector<std::uint32_t>> to_rank(static_cast<std::size_t>(bricks.ranks()));
+  for (std::size_t p = 0; p < local.size(); ++p) {
+    const int owner = bricks.rank_of(local.position_m[p]);
+    if (owner != this_rank) to_rank[static_cast<std::size_t>(owner)].push_back(static_cast<std::uint32_t>(p));
+  }
+  return to_rank;
+}
+
+std::vector<std::vector<std::uint32_t>> ghost_lists(const ParticleStore& local, std::size_t count,
+                                                    const RecursiveBisection& bricks, double reach_m, int this_rank) {
+  std::vector<std::vector<std::uint32_t>> to_rank(static_cast<std::size_t>(bricks.ranks()));
+  for (std::size_t p = 0; p < count; ++p)
+    for (int r = 0; r < bricks.ranks(); ++r)
+      if (r != this_rank && bricks.brick(r).distance_m(local.position_m[p]) <= reach_m)
+        to_rank[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(p));
+  return to_rank;
+}
+
 std::size_t migrate_particles(ParticleStore& local, const RecursiveBisection& bricks, const Communicator& comm) {
   if (bricks.ranks() != comm.size())
     throw SimulationError(fmt::format("{} bricks for {} ranks", bricks.ranks(), comm.size()));
-  std::vector<std::vector<std::uint32_t>> to_rank(static_cast<std::size_t>(comm.size()));
+  const std::vector<std::vector<std::uint32_t>> to_rank = migration_lists(local, bricks, comm.rank());
   std::vector<char> leaves(local.size(), 0);
   std::size_t left = 0;
-  for (std::size_t p = 0; p < local.size(); ++p) {
-    const int owner = bricks.rank_of(local.position_m[p]);
-    if (owner == comm.rank()) continue;
-    to_rank[static_cast<std::size_t>(owner)].push_back(static_cast<std::uint32_t>(p));
-    leaves[p] = 1;
-    ++left;
-  }
+  for (const std::vector<std::uint32_t>& list : to_rank)
+    for (const std::uint32_t p : list) leaves[p] = 1, ++left;
   const std::vector<std::vector<std::byte>> messages = pack_lists(local, to_rank, ParticleTransfer::migration);
   local.remove_if(leaves);
   unpack_messages(comm.exchange(messages), ParticleTransfer::migration, local);
@@ -53,11 +68,7 @@ void exchange_ghosts(ParticleStore& local, const RecursiveBisection& bricks, dou
                      ParticleStore& ghosts) {
   if (bricks.ranks() != comm.size())
     throw SimulationError(fmt::format("{} bricks for {} ranks", bricks.ranks(), comm.size()));
-  std::vector<std::vector<std::uint32_t>> to_rank(static_cast<std::size_t>(comm.size()));
-  for (std::size_t p = 0; p < local.size(); ++p)
-    for (int r = 0; r < comm.size(); ++r)
-      if (r != comm.rank() && bricks.brick(r).distance_m(local.position_m[p]) <= reach_m)
-        to_rank[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(p));
+  const std::vector<std::vector<std::uint32_t>> to_rank = ghost_lists(local, local.size(), bricks, reach_m, comm.rank());
   ghosts = ParticleStore{};
   unpack_messages(comm.exchange(pack_lists(local, to_rank, ParticleTransfer::ghost)), ParticleTransfer::ghost, ghosts);
 }

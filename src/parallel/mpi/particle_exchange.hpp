@@ -4,12 +4,24 @@
 // a rank's brick that its contacts read. Received particles are appended by sending rank,
 // each rank's in its own order, so the result depends only on the ranks' stores.
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "core/particle_store.hpp"
 #include "parallel/mpi/communicator.hpp"
 #include "parallel/recursive_bisection.hpp"
 
 namespace regodem {
+
+/// For each rank, the indices of the particles of `local` whose positions lie in that
+/// rank's brick; this rank's own list stays empty (they stay).
+std::vector<std::vector<std::uint32_t>> migration_lists(const ParticleStore& local, const RecursiveBisection& bricks,
+                                                        int this_rank);
+
+/// For each other rank, the indices of the first `count` particles of `local` within
+/// reach_m of that rank's brick (those its ghosts copy); this rank's own list stays empty.
+std::vector<std::vector<std::uint32_t>> ghost_lists(const ParticleStore& local, std::size_t count,
+                                                    const RecursiveBisection& bricks, double reach_m, int this_rank);
 
 /// Sends every particle of `local` whose position lies in another rank's brick to that
 /// rank, with the fields that migrate (those the next pass computes start at 0), and

@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "core/error.hpp"
 #include "io/run_directory_lock.hpp"
+#include "run_ranks.hpp"
 #include "sim/run_checkpoint.hpp"
 
 namespace regodem::app {
@@ -25,7 +26,7 @@ ResumeChoice choose_resume(const ResumeOptions& options, const std::function<voi
   const fs::path directory(options.run_directory);
   if (!fs::is_directory(directory))
     throw InputError(fmt::format("'{}' is not a run's output directory", options.run_directory));
-  {
+  if (launcher_rank() == 0) {  // under mpirun, rank 0 stands for all
     // A live run there comes first: its checkpoints are still being written. The
     // continued run takes the lock for good once it has read the checkpoint.
     const RunDirectoryLock probe(directory, fmt::format("regodem resume {}", options.run_directory));
@@ -83,13 +84,15 @@ ResumeChoice choose_resume(const ResumeOptions& options, const std::function<voi
 int resume_run(const ResumeOptions& options) {
   ResumeChoice choice;
   try {
-    choice = choose_resume(options, [](const std::string& text) { fmt::print(stderr, "regodem: {}\n", text); });
+    choice = choose_resume(options, [](const std::string& text) {
+      if (launcher_rank() == 0) fmt::print(stderr, "regodem: {}\n", text);
+    });
   } catch (const InputError& error) {
-    fmt::print(stderr, "regodem: error: {}\n", error.what());
+    if (launcher_rank() == 0) fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
   }
   if (choice.completed) {
-    fmt::print("regodem: {}\n", choice.completed_message);
+    if (launcher_rank() == 0) fmt::print("regodem: {}\n", choice.completed_message);
     return exit_status::success;
   }
   return continue_run(choice.run, choice.point);

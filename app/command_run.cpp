@@ -5,13 +5,16 @@
 
 #include <csignal>
 #include <cstdio>
+#include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
 #include "core/error.hpp"
+#include "run_ranks.hpp"
 #include "run_session.hpp"
 #include "signal_handling.hpp"
 
@@ -35,25 +38,49 @@ int execute(const RunOptions& requested, const ResumePoint* resume) {
   RunOptions options = requested;
   options.threads = choice.threads;
 
+  // Under mpirun every rank runs the same plan over its brick; rank 0 writes.
+  std::optional<RunRanks> ranks;
   std::unique_ptr<RunSession> session;
   try {
-    session = std::make_unique<RunSession>(options, resume);
-    // A signal while the scenario was read or built: stop before any old output goes.
-    if (stop_requested.load()) {
-      session->abandon();
-      fmt::print(stderr, "regodem: interrupted by {} before the run started; nothing in '{}' was changed\n",
-                 signal_name(stop_signal()), session->directory().string());
-      return exit_status::interrupted;
+    if (started_as_mpi_rank()) ranks.emplace();
+    const bool writer = !ranks || ranks->rank() == 0;
+    std::exception_ptr failed;  // a rank's setup error, stopping every rank
+    try {
+      session = std::make_unique<RunSession>(options, resume, std::nullopt, writer);
+      if (ranks) ranks->take(session->prepared().simulation());
+      // A signal while the scenario was read or built: stop before any old output goes.
+      if (stop_requested.load() && !ranks) {
+        session->abandon();
+        fmt::print(stderr, "regodem: interrupted by {} before the run started; nothing in '{}' was changed\n",
+                   signal_name(stop_signal()), session->directory().string());
+        return exit_status::interrupted;
+      }
+      session->begin(writer ? stderr : nullptr);
+    } catch (const InputError&) {
+      if (!ranks) throw;
+      failed = std::current_exception();
     }
-    session->begin(stderr);
+    if (ranks) {
+      if (writer && ranks->size() > 1 && !failed)
+        fmt::print(stderr, "regodem: over {} MPI ranks (rank 0 writes the outputs)\n", ranks->size());
+      try {
+        ranks->agree(failed);
+      } catch (const std::exception& error) {
+        if (session) session->abandon();
+        if (writer) fmt::print(stderr, "regodem: error: {}\n", error.what());
+        return exit_status::bad_input;
+      }
+    }
   } catch (const InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
   }
+  const bool writer = !ranks || ranks->rank() == 0;
   const RunEnding ending = session->run(stop_requested);
-  if (ending.status == RunStatus::failed && !ending.outcome.message.empty())
+  if (writer && ending.status == RunStatus::failed && !ending.outcome.message.empty())
     fmt::print(stderr, "regodem: {}\n", ending.outcome.message);
-  fmt::print("{}\n", session->finish(ending, signal_name(stop_signal())));
+  const std::string last_line = session->finish(ending, signal_name(stop_signal()));
+  if (writer) fmt::print("{}\n", last_line);
   std::fflush(stdout);
   return ending.exit_code;
 }

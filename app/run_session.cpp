@@ -125,13 +125,13 @@ RunEnding ending_from_outcome(const RunOutcome& outcome) {
 }
 
 /// A runner that threw still leaves what the last progress report knew.
-RunEnding ending_from_exception(const std::string& message, int exit_code, const RunRecorder& recorder,
+RunEnding ending_from_exception(const std::string& message, int exit_code, const RunRecorder* recorder,
                              double wall_s) {
   RunEnding ending;
   ending.exit_code = exit_code;
   ending.outcome.message = message;
   ending.outcome.wall_s = wall_s;
-  if (const std::optional<ProgressSnapshot> snapshot = recorder.last_snapshot()) {
+  if (const std::optional<ProgressSnapshot> snapshot = recorder ? recorder->last_snapshot() : std::nullopt) {
     ending.outcome.particles = snapshot->particles;
     ending.outcome.steps = snapshot->step;
     ending.outcome.simulated_time_s = snapshot->time_s;
@@ -267,9 +267,11 @@ ThreadChoice choose_run_threads(int requested) {
   return choose_threads(omp_get_max_threads(), runnable_processes_elsewhere());
 }
 
-RunSession::RunSession(const RunOptions& options, const ResumePoint* resume, std::optional<std::string> scenario_text)
+RunSession::RunSession(const RunOptions& options, const ResumePoint* resume, std::optional<std::string> scenario_text,
+                       bool writes_outputs)
     : options_(options),
       resume_(resume),
+      writes_outputs_(writes_outputs),
       scenario_text_(std::move(scenario_text)),
       started_at_(std::chrono::system_clock::now()) {
   try {
@@ -278,6 +280,10 @@ RunSession::RunSession(const RunOptions& options, const ResumePoint* resume, std
     directory_ = options_.output_directory.empty()
                      ? default_output_directory(scenario_name_of(spec_, options_.scenario_path))
                      : fs::path(options_.output_directory);
+    if (!writes_outputs_) {
+      prepared_.emplace(PreparedRun::build(spec_, options_.threads));
+      return;
+    }
     if (!resume_) check_output_directory(directory_, options_.overwrite);  // before the lock creates it
     lock_.emplace(directory_, resume_ ? fmt::format("regodem resume {}", directory_.string())
                                       : fmt::format("regodem run {}", options_.scenario_path));
@@ -317,6 +323,10 @@ fs::path RunSession::identity_scenario_path() const {
 }
 
 void RunSession::begin(std::FILE* progress) {
+  if (!writes_outputs_) {
+    if (resume_) check_resumable(*prepared_, resume_->checkpoint, directory_);
+    return;
+  }
   try {
     if (resume_) {
       check_resumable(*prepared_, resume_->checkpoint, directory_);
@@ -374,23 +384,25 @@ RunEnding RunSession::run(const std::atomic<bool>& stop_requested, RunObserver* 
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   };
   std::optional<ObserverPair> pair;
-  if (extra) pair.emplace(*recorder_, *extra);
-  RunObserver& observer = pair ? static_cast<RunObserver&>(*pair) : *recorder_;
+  RunObserver& recorder = writes_outputs_ ? static_cast<RunObserver&>(*recorder_) : quiet_;
+  if (extra) pair.emplace(recorder, *extra);
+  RunObserver& observer = pair ? static_cast<RunObserver&>(*pair) : recorder;
   RunEnding ending;
   try {
     ending = ending_from_outcome(resume_ ? prepared_->resume(resume_->checkpoint, observer, stop_requested)
                                          : prepared_->run(observer, stop_requested));
   } catch (const InputError& error) {
     // Something only the run could find out (a particle file that will not read).
-    ending = ending_from_exception(error.what(), exit_status::bad_input, *recorder_, wall_s());
+    ending = ending_from_exception(error.what(), exit_status::bad_input, recorder_.get(), wall_s());
   } catch (const std::exception& error) {
-    ending = ending_from_exception(error.what(), exit_status::run_failed, *recorder_, wall_s());
+    ending = ending_from_exception(error.what(), exit_status::run_failed, recorder_.get(), wall_s());
   }
-  display_->finish();
+  if (display_) display_->finish();
   return ending;
 }
 
 std::string RunSession::finish(const RunEnding& ending, const std::string& stop_cause) {
+  if (!writes_outputs_) return "";
   write_summary_json(directory_ / summary_file,
                      make_summary(ending, spec_, options_, *prepared_, *recorder_, started_at_));
   return final_line(ending, *recorder_, *checkpoints_, directory_,

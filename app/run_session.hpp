@@ -42,8 +42,10 @@ class RunSession {
   /// naming it in messages and anchoring its relative paths), checks the output
   /// directory, takes its lock and builds the model with options.threads (> 0). `resume`
   /// (kept by the caller for the session's life): go on from its checkpoint into the same
-  /// directory. Throws InputError, leaving the directory as it was.
-  RunSession(const RunOptions& options, const ResumePoint* resume, std::optional<std::string> scenario_text = {});
+  /// directory. Throws InputError, leaving the directory as it was. `writes_outputs` false:
+  /// a rank other than 0 of a run under mpirun, which runs the same plan and touches no file.
+  RunSession(const RunOptions& options, const ResumePoint* resume, std::optional<std::string> scenario_text = {},
+             bool writes_outputs = true);
   RunSession(const RunSession&) = delete;
   RunSession& operator=(const RunSession&) = delete;
   ~RunSession();
@@ -61,7 +63,7 @@ class RunSession {
   /// stop_requested, reporting to the recorder and to `extra` when given.
   RunEnding run(const std::atomic<bool>& stop_requested, RunObserver* extra = nullptr);
   /// Writes summary.json and returns the final line; `stop_cause` names what stopped an
-  /// interrupted run ("SIGINT").
+  /// interrupted run ("SIGINT"). Nothing, and an empty line, where the session writes no outputs.
   std::string finish(const RunEnding& ending, const std::string& stop_cause);
 
   const ScenarioSpec& spec() const { return spec_; }
@@ -75,6 +77,8 @@ class RunSession {
  private:
   RunOptions options_;
   const ResumePoint* resume_ = nullptr;
+  bool writes_outputs_ = true;
+  RunObserver quiet_;  // what a session that writes no outputs reports to
   std::optional<std::string> scenario_text_;
   std::chrono::system_clock::time_point started_at_;
   ScenarioSpec spec_;

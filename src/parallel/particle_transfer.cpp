@@ -14,6 +14,7 @@ bool carried(const ParticleField& field, ParticleTransfer kind) {
     case ParticleTransfer::migration: return field.migrates;
     case ParticleTransfer::ghost: return field.ghosts_need;
     case ParticleTransfer::ghost_refresh: return field.ghosts_refresh;
+    case ParticleTransfer::whole: return true;
   }
   return false;
 }

@@ -14,8 +14,9 @@
 namespace regodem {
 
 /// What a message carries: a migrating particle (fields marked `migrates`), a new ghost
-/// (`ghosts_need`), or a ghost's update between builds (`ghosts_refresh`).
-enum class ParticleTransfer { migration, ghost, ghost_refresh };
+/// (`ghosts_need`), a ghost's update between builds (`ghosts_refresh`), or every field (a
+/// run gathered on every rank between steps, its forces kept for the next step).
+enum class ParticleTransfer { migration, ghost, ghost_refresh, whole };
 
 /// Appends to `bytes` the particles at `indices` of `store`: their count, then each
 /// field that `kind` carries, in the table's order, all the particles' values together.

@@ -702,12 +702,14 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   std::vector<std::string> tags;
   std::vector<char> particle_material(materials.size(), 0);
   double min_radius = std::numeric_limits<double>::infinity();
+  double max_radius = 0.0;
   double min_rayleigh = std::numeric_limits<double>::infinity();
   std::string min_rayleigh_particle;  // which particle sets the step, for a plan that cannot be run
   std::vector<double> smallest_radius_of_material(materials.size(), std::numeric_limits<double>::infinity());
   const auto consider_particle = [&](double r, MaterialIndex material) {
     const Material& m = materials[material];
     min_radius = std::min(min_radius, r);
+    max_radius = std::max(max_radius, r);
     smallest_radius_of_material[material] = std::min(smallest_radius_of_material[material], r);
     const double rayleigh = rayleigh_time_s(r, m.density_kg_per_m3, m.shear_modulus_Pa, m.poisson_ratio);
     if (!(rayleigh >= min_rayleigh))
@@ -945,6 +947,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
   settings.time_step_s = dt;
   settings.neighbor_skin_m = spec.neighbor_skin_m > 0.0 ? spec.neighbor_skin_m : 0.2 * min_radius;
   settings.min_particle_radius_m = min_radius;
+  settings.max_particle_radius_m = max_radius;
   settings.threads = threads;
   settings.heat.enabled = spec.heat.enabled;
   settings.heat.time_scale_factor = spec.heat.time_scale_factor;

@@ -176,6 +176,12 @@ void MeasurementRunner::before_step(const Simulation& sim, double half_step_s, R
     if (clocks_[k].due(sim.time_s(), half_step_s, depth_m(sim, plan_.items[k]))) take(k, sim, half_step_s, observer);
 }
 
+bool MeasurementRunner::due(const Simulation& sim, double half_step_s) const {
+  for (std::size_t k = 0; k < plan_.items.size(); ++k)
+    if (clocks_[k].due(sim.time_s(), half_step_s, depth_m(sim, plan_.items[k]))) return true;
+  return false;
+}
+
 void MeasurementRunner::at_stage_end(const Simulation& sim, RunObserver& observer) {
   for (std::size_t k = 0; k < plan_.items.size(); ++k)
     if (clocks_[k].due_at_stage_end(sim.time_s())) take(k, sim, 0.0, observer);

@@ -39,6 +39,8 @@ class MeasurementRunner {
   void announce(const Simulation& sim, RunObserver& observer) const;
   /// The measurements that sample with the time series: call at each time-series sample.
   void with_time_series(const Simulation& sim, RunObserver& observer);
+  /// Whether before_step() would take any now.
+  bool due(const Simulation& sim, double half_step_s) const;
   /// Before each step (as the snapshots): takes those that are due.
   void before_step(const Simulation& sim, double half_step_s, RunObserver& observer);
   /// At the end of a stage: those whose schedule adds one there.

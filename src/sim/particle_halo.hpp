@@ -44,6 +44,14 @@ class ParticleHalo {
   virtual void follow_sort(const std::vector<std::uint32_t>& order) = 0;
   /// Between builds, after the particles moved: each ghost's changing fields from its rank.
   virtual void refresh_ghosts(ParticleStore& particles) = 0;
+  /// Between steps: replaces `particles` (this rank's own, no ghosts) and `history` (theirs)
+  /// by every rank's, on every rank, in id order, with every field (forces included); the
+  /// next redistribute() then keeps this rank's brick and sends nothing.
+  virtual void gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history) = 0;
+  /// Every rank's `mine` (the same count on each) on every rank, by rank.
+  virtual std::vector<double> values_of_every_rank(std::span<const double> mine) = 0;
+  /// The bitwise or of `mine` over the ranks.
+  virtual std::uint32_t bits_over_ranks(std::uint32_t mine) = 0;
 };
 
 }  // namespace regodem

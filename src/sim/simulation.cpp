@@ -158,6 +158,7 @@ void Simulation::rebuild_neighbors(bool history_saved) {
     redistribute_particles();
     history_saved = true;
     grid_particles = halo_->sum_over_ranks(own_particle_count());
+    run_particles_ = grid_particles;
     halo_build_pending_ = false;
   }
   // The grid is sized for the current particle count: the counting sort costs one pass

@@ -78,6 +78,7 @@ struct SimulationSettings {
   double time_step_s = 0.0;
   double neighbor_skin_m = 0.0;
   double min_particle_radius_m = 0.0;  // sizes the neighbour grid
+  double max_particle_radius_m = 0.0;  // the largest a run inserts: how far ghosts reach under MPI
   int threads = 1;
   // Below this many particles per thread the force pass is shorter than the threads'
   // synchronisation, so fewer threads run it.
@@ -238,6 +239,30 @@ class Simulation {
   /// How far from its brick a rank needs the other ranks' particles, for particles no
   /// larger than largest_radius_m: the farthest the lists pair two particles.
   double ghost_reach_m(double largest_radius_m) const;
+  /// A run over MPI whose every rank built this simulation the same (the same particles):
+  /// it starts gathered (gather_everywhere), and its first step splits it (`halo` made
+  /// with HaloExchange::Start::replicated, outliving this). The same refusals as distribute().
+  void start_gathered(ParticleHalo* halo);
+  /// Whether this simulation steps one rank's particles (distributed, not gathered).
+  bool distributed() const { return halo_ != nullptr; }
+  /// Whether it belongs to a run over MPI ranks, distributed or gathered.
+  bool over_ranks() const { return halo_ != nullptr || gathered_halo_ != nullptr; }
+  /// Between steps under MPI: every rank then holds all particles of the run, in id order,
+  /// with every field and their contact history, the lists rebuilt for them, and the
+  /// fastest impact of any rank; until distribute_again() this simulation is one process's
+  /// (the same on every rank): what reads or changes the particles between steps
+  /// (insertion, samples, snapshots, checkpoints, a static-bed stage) sees the whole run.
+  /// Nothing when not distributed.
+  void gather_everywhere();
+  /// After gather_everywhere(): the next step splits the particles again (each rank keeps
+  /// those of its brick, and nothing is sent). Nothing when not gathered.
+  void distribute_again();
+  /// The run's particle count: when distributed, every rank's own particles at the last
+  /// build (particles are added or removed only between steps, gathered).
+  std::size_t run_particle_count() const;
+  /// Under MPI, `mine` or-ed over the ranks (decisions a rank's clock or a signal makes,
+  /// which every rank must take at the same step); `mine` in one process.
+  std::uint32_t bits_over_ranks(std::uint32_t mine) const;
 
   ParticleStore particles;
   MaterialTable materials;
@@ -257,6 +282,8 @@ class Simulation {
   /// Throws InputError under MPI: `what` changes one rank's particles between steps, and
   /// the next step's decisions would then not be every rank's (not yet over ranks).
   void refuse_under_ranks(const char* what) const;
+  /// Throws InputError for what does not yet run over MPI ranks (bonds, removing lost particles).
+  void refuse_what_ranks_cannot_run() const;
   /// Under MPI, after a contact pass: the walls' forces, torques, power and heat and the
   /// contacts' totals, each rank's own, summed over the ranks.
   void sum_totals_over_ranks();
@@ -411,6 +438,8 @@ class Simulation {
   std::vector<WallContactHeat> wall_contact_heat_;  // per wall node, taken at each contact pass
 
   ParticleHalo* halo_ = nullptr;         // under MPI only
+  ParticleHalo* gathered_halo_ = nullptr;  // under MPI, between gather_everywhere and distribute_again
+  std::size_t run_particles_ = 0;         // distributed: every rank's own, at the last build
   bool halo_build_pending_ = false;       // distributed since the last build
   std::vector<std::uint8_t> ghost_;       // per particle under MPI, else empty
 

@@ -4,17 +4,28 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 
 #include "core/error.hpp"
 #include "sim/simulation.hpp"
 
 namespace regodem {
 
-void Simulation::distribute(ParticleHalo* halo) {
+void Simulation::refuse_what_ranks_cannot_run() const {
   if (!bonds_.empty() || bonds_configured())
     throw InputError("bonds are not yet supported in a run over MPI ranks");
   if (settings_.lost_particles == LostParticles::remove)
     throw InputError("domain.lost_particles: remove is not yet supported in a run over MPI ranks");
+}
+
+void Simulation::start_gathered(ParticleHalo* halo) {
+  refuse_what_ranks_cannot_run();
+  halo_ = nullptr;
+  gathered_halo_ = halo;
+}
+
+void Simulation::distribute(ParticleHalo* halo) {
+  refuse_what_ranks_cannot_run();
   halo_ = halo;
   halo_build_pending_ = halo != nullptr;
   // The next build makes the grid afresh for all ranks' particles (the lists' order, and
@@ -22,7 +33,50 @@ void Simulation::distribute(ParticleHalo* halo) {
   // be the one of one process.
   grid_ = CellGrid{};
   ghost_.assign(halo ? particles.size() : 0, 0);
+  run_particles_ = particles.size();  // a replicated start's; a spread one's from its first build
   forces_current_ = false;
+}
+
+void Simulation::gather_everywhere() {
+  if (!halo_) return;
+  // The contact history own particles hold, as a build would hand it to the halo.
+  neighbors_.save_history(particles);
+  ghost_.resize(particles.size(), 0);
+  ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
+  particles.remove_if(std::vector<char>(ghost_.begin(), ghost_.end()));
+  halo_->gather_everywhere(particles, history);
+  // The fastest impact of any rank (the larger key; on a tie the lowest rank's).
+  const ImpactRecord mine = fastest_impact_;
+  const std::vector<double> impacts = halo_->values_of_every_rank(std::array<double, 4>{
+      mine.key, mine.approach_speed_m_per_s, static_cast<double>(mine.wall_body), mine.time_s});
+  fastest_impact_ = ImpactRecord{};
+  for (std::size_t at = 0; at + 4 <= impacts.size(); at += 4)
+    fastest_impact_.merge(ImpactRecord{impacts[at], impacts[at + 1], static_cast<std::int32_t>(impacts[at + 2]),
+                                       impacts[at + 3]});
+  gathered_halo_ = halo_;
+  halo_ = nullptr;
+  ghost_.clear();
+  neighbors_.set_saved_history(std::move(history));
+  grid_ = CellGrid{};
+  // One process's lists over all particles: a checkpoint saves them; the forces came with
+  // the particles, so the next step goes on from them as it would have.
+  rebuild_neighbors(true);
+}
+
+void Simulation::distribute_again() {
+  if (!gathered_halo_) return;
+  ParticleHalo* halo = gathered_halo_;
+  gathered_halo_ = nullptr;
+  const bool forces_were_current = forces_current_;
+  distribute(halo);
+  forces_current_ = forces_were_current;
+}
+
+std::size_t Simulation::run_particle_count() const { return halo_ ? run_particles_ : particles.size(); }
+
+std::uint32_t Simulation::bits_over_ranks(std::uint32_t mine) const {
+  ParticleHalo* halo = halo_ ? halo_ : gathered_halo_;
+  return halo ? halo->bits_over_ranks(mine) : mine;
 }
 
 void Simulation::refuse_under_ranks(const char* what) const {

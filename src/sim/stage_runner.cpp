@@ -49,10 +49,14 @@ MaterialTable apply_overrides(Simulation& sim, const std::vector<PairOverride>& 
 }
 
 double kinetic_energy_per_particle(const Simulation& sim) {
-  if (sim.particles.empty()) return 0.0;
-  return (sim.translational_kinetic_energy_J() + sim.rotational_kinetic_energy_J()) /
-         static_cast<double>(sim.particles.size());
+  const std::size_t count = sim.run_particle_count();
+  if (count == 0) return 0.0;
+  return (sim.translational_kinetic_energy_J() + sim.rotational_kinetic_energy_J()) / static_cast<double>(count);
 }
+
+// Decisions a rank's clock or a signal makes; under MPI every rank takes them at the same
+// step (Simulation::bits_over_ranks), as rank 0's clock or any rank's signal says.
+enum ClockDecision : std::uint32_t { stop_now = 1, checkpoint_now = 2, progress_now = 4 };
 
 /// Refuses a coupled heat step above the explicit limit min m c / sum G (DESIGN.md
 /// section 2): the temperatures would oscillate and grow.
@@ -301,7 +305,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
   auto finish = [&](bool completed, const std::string& message) {
     outcome.completed = completed;
     outcome.message = message;
-    outcome.particles = sim.particles.size();
+    outcome.particles = sim.run_particle_count();
     outcome.steps = sim.step_count();
     outcome.simulated_time_s = sim.time_s();
     outcome.wall_s = seconds_since(run_start);
@@ -342,6 +346,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     std::string failure;
     StageResult result = StageResult::finished;
     try {
+      if (stage.freezes_mechanics()) sim.gather_everywhere();  // under MPI, every rank steps the whole bed's heat
       if (stage.form_bonds && !inside) {
         const BondFormation& f = *stage.form_bonds;
         const std::size_t formed = sim.form_bonds(f.gap_fraction, f.materials, f.regions);
@@ -427,6 +432,26 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
 
     if (result == StageResult::finished) try {
       for (;;) {
+        // Under MPI: the clock's decisions taken by all ranks at once, and the particles
+        // gathered on every rank when anything this iteration reads or adds them (a
+        // static-bed stage stays gathered).
+        std::uint32_t decided = 0;
+        if (done % check_every == 0) {
+          if (stop_requested.load(std::memory_order_relaxed)) decided |= stop_now;
+          if (observer.checkpoint_due()) decided |= checkpoint_now;
+          if (seconds_since(last_progress_clock) >= observer.progress_interval_s()) decided |= progress_now;
+          decided = sim.bits_over_ranks(decided);
+        }
+        if (sim.distributed()) {
+          bool reads_particles = frozen.has_value() || (decided & (stop_now | checkpoint_now)) != 0 ||
+                                 sim.time_s() + 0.5 * step_s >= next_sample_s ||
+                                 snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m()) ||
+                                 measurements.due(sim, 0.5 * step_s) ||
+                                 (stage.ends_on_measurement() && done % check_every == 0);
+          for (const Insertion* ins : active)
+            reads_particles = reads_particles || (!ins->finished && sim.time_s() + 0.5 * dt >= ins->next_attempt_s());
+          if (reads_particles) sim.gather_everywhere();
+        }
         bool insertions_done = true;
         for (Insertion* ins : active) {
           if (!ins->finished && sim.time_s() + 0.5 * dt >= ins->next_attempt_s()) {
@@ -486,15 +511,15 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             result = StageResult::failed;
             break;
           }
-          if (stop_requested.load(std::memory_order_relaxed)) {
+          if (decided & stop_now) {
             checkpoint_here(CheckpointReason::interrupted);
             result = StageResult::interrupted;
             failure = fmt::format("interrupted during stage '{}' at t = {:.6g} s", stage.name, sim.time_s());
             break;
           }
-          if (observer.checkpoint_due()) checkpoint_here(CheckpointReason::periodic);
+          if (decided & checkpoint_now) checkpoint_here(CheckpointReason::periodic);
           const double since = seconds_since(last_progress_clock);
-          if (since >= observer.progress_interval_s()) {
+          if (decided & progress_now) {
             steps_per_s = static_cast<double>(done - last_progress_step) / since;
             // The time left uses the rate of the last minute: steadier than the last
             // interval's, and it follows a machine that gets loaded (or freed) mid-stage.
@@ -506,10 +531,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             snap.stage = info;
             snap.time_s = sim.time_s();
             snap.step = sim.step_count();
-            snap.particles = sim.particles.size();
+            snap.particles = sim.run_particle_count();
             snap.wall_s = seconds_since(run_start);
             snap.steps_per_s = steps_per_s;
-            snap.particle_steps_per_s = steps_per_s * static_cast<double>(sim.particles.size());
+            snap.particle_steps_per_s = steps_per_s * static_cast<double>(snap.particles);
             const double steps_left = stage.ends_at_depth() ? time_to_depth_s(sim, stage) / dt
                                                             : static_cast<double>(planned_steps) - static_cast<double>(done);
             snap.estimated_remaining_s =
@@ -532,6 +557,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         } else {
           observer.before_step(sim);
           const bool resolved_before = impacts_resolved(sim);
+          sim.distribute_again();
           sim.step();
           if (sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
           if (resolved_before && !impacts_resolved(sim)) observer.notice(unresolved_impact_notice(sim, stage.name));
@@ -539,12 +565,13 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         ++done;
         snapshots.count_step();
         measurements.count_step();
-        particle_steps += static_cast<double>(sim.particles.size());
+        particle_steps += static_cast<double>(sim.run_particle_count());
       }
     } catch (const SimulationError& e) {
       result = StageResult::failed;
       failure = fmt::format("stage '{}' failed: {}", stage.name, e.what());
     }
+    sim.gather_everywhere();  // the stage's end reads the particles (under MPI)
     if (result == StageResult::finished) {
       if (last_sampled_time_s != sim.time_s()) sample();
       for (Insertion* ins : active) {

@@ -79,6 +79,11 @@ std::vector<std::vector<std::byte>> Communicator::gather_to_all(const std::vecto
   return by_rank;
 }
 
+std::uint32_t Communicator::bits_or(std::uint32_t value) const {
+  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_UINT32_T, MPI_BOR, comm_);
+  return value;
+}
+
 double Communicator::max(double value) const {
   double largest = 0.0;
   MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);

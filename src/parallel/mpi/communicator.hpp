@@ -25,6 +25,8 @@ class Communicator {
   std::uint64_t sum(std::uint64_t value) const;
   /// The largest over the ranks.
   double max(double value) const;
+  /// The bitwise or over the ranks.
+  std::uint32_t bits_or(std::uint32_t value) const;
   /// Every rank's bytes on rank `root`, by rank (the other ranks get nothing).
   std::vector<std::vector<std::byte>> gather(const std::vector<std::byte>& mine, int root) const;
   /// Every rank's bytes on every rank, by rank.

@@ -216,4 +216,45 @@ void HaloExchange::refresh_ghosts(ParticleStore& particles) {
   }
 }
 
+void HaloExchange::gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history) {
+  if (history.owners() != particles.size())
+    throw SimulationError(
+        fmt::format("{} particles with {} contact histories to gather", particles.size(), history.owners()));
+  std::vector<std::uint32_t> every(particles.size());
+  for (std::size_t i = 0; i < every.size(); ++i) every[i] = static_cast<std::uint32_t>(i);
+  const std::vector<std::byte> mine = pack_with_history(particles, history, every, ParticleTransfer::whole);
+  ParticleStore all;
+  ContactHistoryByOwner all_history;
+  unpack_with_history(comm_.gather_to_all(mine), ParticleTransfer::whole, all, all_history);
+  all.set_next_id(particles.next_id());  // every rank's: insertion takes the same ids everywhere
+  // In id order: the same store on every rank, whatever the split.
+  std::vector<std::uint32_t> order(all.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return all.id[a] < all.id[b]; });
+  all.permute(order);
+  history = ContactHistoryByOwner{};
+  history.contacts.reserve(all_history.contacts.size());
+  for (const std::uint32_t p : order) {
+    history.contacts.insert(history.contacts.end(), all_history.contacts.begin() + all_history.begin[p],
+                            all_history.contacts.begin() + all_history.begin[p + 1]);
+    history.begin.push_back(static_cast<std::uint32_t>(history.contacts.size()));
+  }
+  particles = std::move(all);
+  sent_to_.assign(static_cast<std::size_t>(comm_.size()), {});
+  received_from_.assign(static_cast<std::size_t>(comm_.size()), {});
+  replicated_ = true;
+}
+
+std::vector<double> HaloExchange::values_of_every_rank(std::span<const double> mine) {
+  std::vector<std::byte> bytes(mine.size_bytes());
+  if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), mine.size_bytes());
+  std::vector<double> all;
+  for (const std::vector<std::byte>& from : comm_.gather_to_all(bytes)) {
+    const std::size_t first = all.size();
+    all.resize(first + from.size() / sizeof(double));
+    if (!from.empty()) std::memcpy(all.data() + first, from.data(), from.size());
+  }
+  return all;
+}
+
 }  // namespace regodem

@@ -37,6 +37,9 @@ class HaloExchange final : public ParticleHalo {
                     std::vector<std::uint8_t>& is_ghost) override;
   void follow_sort(const std::vector<std::uint32_t>& order) override;
   void refresh_ghosts(ParticleStore& particles) override;
+  void gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history) override;
+  std::vector<double> values_of_every_rank(std::span<const double> mine) override;
+  std::uint32_t bits_over_ranks(std::uint32_t mine) override { return comm_.bits_or(mine); }
 
   const RecursiveBisection& bricks() const { return bricks_; }
   /// Particles that left this rank since the start, the contact histories they took

@@ -1,0 +1,122 @@
+#!/usr/bin/env python3
+"""`mpirun -np N regodem run` (issue 19): the same scenario on 1, 2 and 3 ranks.
+
+Usage: run_over_ranks.py REGODEM MPIEXEC WORK_DIRECTORY
+
+Bounds, stated before the runs:
+- the particles are stepped bit for bit alike on every rank count, so every particle
+  snapshot (.vtp), region table and profile is byte for byte the same, and so is every
+  time-series column but the walls' totals;
+- the walls' forces, torques and heat flows and the contacts' totals (stored, dissipated
+  and generated energy, the energy audit built on them) are sums over the ranks'
+  contacts, added in rank order (Communicator::sum_in_rank_order): they agree within
+  1e-9 of the column's largest magnitude (one rounding per pass, 1e-16 relative, over
+  < 1e5 passes);
+- a run that cannot start on one rank stops every rank with its message, exit status 2,
+  within the timeout (no rank waits for one that stopped).
+"""
+import csv
+import filecmp
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+REGODEM, MPIEXEC, WORK = sys.argv[1], sys.argv[2], Path(sys.argv[3])
+SCENARIOS = Path(__file__).resolve().parents[1] / "data" / "scenarios"
+SCENARIO = SCENARIOS / "over_ranks_small.yaml"
+# Columns that are sums over the ranks' contacts (the walls' and the contacts' totals).
+SUMMED_OVER_RANKS = (".force_", ".torque_", ".heat_flow", ".heat_to_particles", ".thrust", ".drive_torque",
+                     "elastic_energy", "spring_source", "dissipated_energy", "generated_heat", "wall_work",
+                     "mechanical_imbalance")
+TIMEOUT_S = 300
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAIL:", message)
+
+
+def mpirun(ranks, *arguments):
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1")
+    command = [MPIEXEC, "-np", str(ranks), "--oversubscribe", REGODEM, *arguments]
+    return subprocess.run(command, capture_output=True, text=True, env=env, timeout=TIMEOUT_S)
+
+
+def rows(path):
+    with open(path, newline="") as f:
+        table = list(csv.reader(f))
+    return table[0], table[1:]
+
+
+def compare_runs(reference, other, label):
+    for folder in ("regions", "profiles"):
+        common = sorted(p.name for p in (reference / folder).iterdir())
+        check(common == sorted(p.name for p in (other / folder).iterdir()), f"{label}: {folder}/ holds other files")
+        for name in common:
+            check(filecmp.cmp(reference / folder / name, other / folder / name, shallow=False),
+                  f"{label}: {folder}/{name} differs")
+    snapshots = sorted((reference / "vtk").glob("particles_*.vtp"))
+    check(len(snapshots) >= 3, f"{label}: {len(snapshots)} particle snapshots")
+    for snapshot in snapshots:
+        check(filecmp.cmp(snapshot, other / "vtk" / snapshot.name, shallow=False), f"{label}: {snapshot.name} differs")
+    header, a = rows(reference / "time_series.csv")
+    other_header, b = rows(other / "time_series.csv")
+    check(header == other_header and len(a) == len(b), f"{label}: the time series has other columns or rows")
+    for column, name in enumerate(header):
+        values_a = [r[column] for r in a]
+        values_b = [r[column] for r in b]
+        if not any(marker in name for marker in SUMMED_OVER_RANKS):
+            check(values_a == values_b, f"{label}: column '{name}' differs")
+            continue
+        scale = max(abs(float(v)) for v in values_a) or 1.0
+        worst = max(abs(float(x) - float(y)) for x, y in zip(values_a, values_b))
+        check(worst <= 1e-9 * scale, f"{label}: column '{name}' differs by {worst:.3g} (largest value {scale:.3g})")
+    summary = json.loads((other / "summary.json").read_text())
+    check(summary["outcome"] == "completed" and summary["particles"] == 240,
+          f"{label}: summary says {summary['outcome']} with {summary['particles']} particles")
+
+
+runs = {}
+for ranks in (1, 2, 3):
+    out = WORK / f"ranks{ranks}"
+    result = mpirun(ranks, "run", str(SCENARIO), "-o", str(out), "--overwrite")
+    check(result.returncode == 0, f"{ranks} ranks: exit status {result.returncode}\n{result.stderr[-2000:]}")
+    lines = result.stdout.strip().splitlines()
+    check(len(lines) == 1 and lines[0].startswith("regodem: completed 2 stages"),
+          f"{ranks} ranks: stdout is {result.stdout!r} (one final line, from rank 0 alone)")
+    runs[ranks] = out
+for ranks in (2, 3):
+    compare_runs(runs[1], runs[ranks], f"{ranks} ranks against 1")
+
+# A checkpoint written over 2 ranks (one process's, gathered) resumed on 1 and on 3: the
+# end of the first stage, the last checkpoint taken away; the run goes on as it was.
+for ranks in (1, 3):
+    copy = WORK / f"resumed_on_{ranks}"
+    shutil.rmtree(copy, ignore_errors=True)
+    shutil.copytree(runs[2], copy)
+    checkpoints = sorted((copy / "checkpoints").glob("checkpoint_*.rgck"))
+    check(len(checkpoints) == 2, f"the run over 2 ranks wrote {len(checkpoints)} checkpoints, not one per stage")
+    checkpoints[-1].unlink()
+    result = mpirun(ranks, "resume", str(copy))
+    check(result.returncode == 0, f"resumed on {ranks} ranks: exit status {result.returncode}\n{result.stderr[-2000:]}")
+    compare_runs(runs[1], copy, f"resumed on {ranks} ranks")
+
+# A directory in use: rank 0 refuses it, and every rank stops.
+refused = mpirun(2, "run", str(SCENARIO), "-o", str(runs[1]))
+check(refused.returncode == 2, f"a used directory: exit status {refused.returncode}")
+check(refused.stderr.count("regodem: error:") == 1 and "is not empty" in refused.stderr,
+      f"a used directory: the error not once on stderr:\n{refused.stderr}")
+
+# What does not yet run over ranks is refused on every rank with its reason.
+bonded = mpirun(2, "run", str(SCENARIOS / "checkpoint_small.yaml"), "-o", str(WORK / "bonded"), "--overwrite")
+check(bonded.returncode == 2 and "bonds are not yet supported in a run over MPI ranks" in bonded.stderr,
+      f"bonds: exit status {bonded.returncode}, stderr:\n{bonded.stderr}")
+check(not (WORK / "bonded").exists(), "bonds: the refused run left its directory")
+
+print("run over ranks:", "FAILED" if failures else "passed", f"({len(failures)} failures)")
+sys.exit(1 if failures else 0)

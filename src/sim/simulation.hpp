@@ -229,8 +229,9 @@ class Simulation {
   /// process. Adding or removing particles and setting a velocity between steps are not
   /// yet over ranks (InputError). The walls' forces, torques, power and heat and the contact totals of each
   /// pass are summed over the ranks (in rank order: within round-off of one process's).
-  /// Not yet under MPI (InputError): bonds, removing lost particles; the energy and heat
-  /// ledgers, the fastest impact and the measurements over particles are each rank's.
+  /// Not yet under MPI (InputError): bonds, removing lost particles. The fastest impact
+  /// is each rank's until gather_everywhere() merges them; a run adds particles, books
+  /// the ledgers' reference energies and measures while gathered.
   void distribute(ParticleHalo* halo);
   /// The particles this simulation steps (all of them in one process).
   std::size_t own_particle_count() const;

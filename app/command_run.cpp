@@ -33,7 +33,7 @@ int execute(const RunOptions& requested, const ResumePoint* resume) {
   // summary and a checkpoint (at the run's first step boundary).
   const std::atomic<bool>& stop_requested = install_stop_request_handlers();
   const ThreadChoice choice = choose_run_threads(requested.threads);
-  if (!choice.note.empty()) fmt::print(stderr, "regodem: note: {}\n", choice.note);
+  if (!choice.note.empty() && launcher_rank() == 0) fmt::print(stderr, "regodem: note: {}\n", choice.note);
   omp_set_num_threads(choice.threads);
   RunOptions options = requested;
   options.threads = choice.threads;
@@ -44,33 +44,47 @@ int execute(const RunOptions& requested, const ResumePoint* resume) {
   try {
     if (started_as_mpi_rank()) ranks.emplace();
     const bool writer = !ranks || ranks->rank() == 0;
-    std::exception_ptr failed;  // a rank's setup error, stopping every rank
-    try {
-      session = std::make_unique<RunSession>(options, resume, std::nullopt, writer);
-      if (ranks) ranks->take(session->prepared().simulation());
-      // A signal while the scenario was read or built: stop before any old output goes.
-      if (stop_requested.load() && !ranks) {
-        session->abandon();
-        fmt::print(stderr, "regodem: interrupted by {} before the run started; nothing in '{}' was changed\n",
-                   signal_name(stop_signal()), session->directory().string());
-        return exit_status::interrupted;
+    // Under MPI a setup error of any rank stops every rank, with the first one's message:
+    // once the scenario is built (before rank 0 clears the directory) and once begun.
+    const auto every_rank_agrees = [&](const std::exception_ptr& failed) {
+      if (!ranks) {
+        if (failed) std::rethrow_exception(failed);
+        return true;
       }
-      session->begin(writer ? stderr : nullptr);
-    } catch (const InputError&) {
-      if (!ranks) throw;
-      failed = std::current_exception();
-    }
-    if (ranks) {
-      if (writer && ranks->size() > 1 && !failed)
-        fmt::print(stderr, "regodem: over {} MPI ranks (rank 0 writes the outputs)\n", ranks->size());
       try {
         ranks->agree(failed);
+        return true;
       } catch (const std::exception& error) {
         if (session) session->abandon();
         if (writer) fmt::print(stderr, "regodem: error: {}\n", error.what());
-        return exit_status::bad_input;
+        return false;
       }
+    };
+    std::exception_ptr failed;
+    try {
+      session = std::make_unique<RunSession>(options, resume, std::nullopt, writer);
+      if (ranks) ranks->take(session->prepared().simulation());
+    } catch (const std::exception&) {
+      if (!ranks) throw;
+      failed = std::current_exception();
     }
+    if (!every_rank_agrees(failed)) return exit_status::bad_input;
+    // A signal while the scenario was read or built: stop before any old output goes.
+    if (stop_requested.load() && !ranks) {
+      session->abandon();
+      fmt::print(stderr, "regodem: interrupted by {} before the run started; nothing in '{}' was changed\n",
+                 signal_name(stop_signal()), session->directory().string());
+      return exit_status::interrupted;
+    }
+    try {
+      session->begin(writer ? stderr : nullptr);
+    } catch (const std::exception&) {
+      if (!ranks) throw;
+      failed = std::current_exception();
+    }
+    if (!every_rank_agrees(failed)) return exit_status::bad_input;
+    if (ranks && writer && ranks->size() > 1)
+      fmt::print(stderr, "regodem: over {} MPI ranks (rank 0 writes the outputs)\n", ranks->size());
   } catch (const InputError& error) {
     fmt::print(stderr, "regodem: error: {}\n", error.what());
     return exit_status::bad_input;
@@ -82,6 +96,12 @@ int execute(const RunOptions& requested, const ResumePoint* resume) {
   const std::string last_line = session->finish(ending, signal_name(stop_signal()));
   if (writer) fmt::print("{}\n", last_line);
   std::fflush(stdout);
+  // An error thrown out of the run (writing an output) may be this rank's alone, with the
+  // others waiting for it: end them all.
+  if (ranks && ranks->size() > 1 && ending.thrown) {
+    std::fflush(stderr);
+    ranks->abort(ending.exit_code);
+  }
   return ending.exit_code;
 }
 

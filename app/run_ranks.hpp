@@ -35,6 +35,9 @@ class RunRanks {
   /// A point every rank reaches with the error it met (or none): when any rank brings one,
   /// every rank throws that of the lowest such rank, so that none waits for one that stopped.
   void agree(const std::exception_ptr& error);
+  /// Ends every rank of the job now with `exit_code` (MPI_Abort): after an error that this
+  /// rank alone may have met (writing an output), when the others may wait for it.
+  [[noreturn]] void abort(int exit_code);
   /// From here `sim`, built the same on every rank, is stepped over the ranks: one brick
   /// of its domain each, starting gathered. Throws InputError for what cannot yet run over
   /// ranks (bonds, removing lost particles).

@@ -2,6 +2,8 @@
 // domain per rank, and the halo that carries particles between them (HaloExchange).
 #include <mpi.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <optional>
 
 #include "core/error.hpp"
@@ -35,6 +37,11 @@ int RunRanks::rank() const { return impl_->comm->rank(); }
 int RunRanks::size() const { return impl_->comm->size(); }
 
 void RunRanks::agree(const std::exception_ptr& error) { impl_->comm->agree(error); }
+
+void RunRanks::abort(int exit_code) {
+  MPI_Abort(MPI_COMM_WORLD, exit_code);
+  std::exit(exit_code);  // MPI_Abort does not return
+}
 
 void RunRanks::take(Simulation& sim) {
   const SimulationSettings& settings = sim.settings();

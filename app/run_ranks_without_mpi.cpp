@@ -2,6 +2,8 @@
 // started by mpirun, instead of running the whole scenario once on every rank.
 #include "run_ranks.hpp"
 
+#include <cstdlib>
+
 #include "core/error.hpp"
 
 namespace regodem::app {
@@ -19,6 +21,7 @@ int RunRanks::size() const { return 1; }
 void RunRanks::agree(const std::exception_ptr& error) {
   if (error) std::rethrow_exception(error);
 }
+void RunRanks::abort(int exit_code) { std::exit(exit_code); }
 void RunRanks::take(Simulation&) {}
 
 }  // namespace regodem::app

@@ -129,6 +129,7 @@ RunEnding ending_from_exception(const std::string& message, int exit_code, const
                              double wall_s) {
   RunEnding ending;
   ending.exit_code = exit_code;
+  ending.thrown = true;
   ending.outcome.message = message;
   ending.outcome.wall_s = wall_s;
   if (const std::optional<ProgressSnapshot> snapshot = recorder ? recorder->last_snapshot() : std::nullopt) {

@@ -30,6 +30,7 @@ struct RunEnding {
   RunStatus status = RunStatus::failed;
   int exit_code = exit_status::run_failed;
   RunOutcome outcome;
+  bool thrown = false;  // the runner threw: under MPI, maybe on this rank alone
 };
 
 /// The threads a run uses: `requested` when above 0, else OMP_NUM_THREADS when set, else

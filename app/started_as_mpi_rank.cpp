@@ -1,5 +1,5 @@
 // Whether a launcher started this process as a rank of a job, and which (run_ranks.hpp):
-// OpenMPI's mpirun, a PMI launcher (MPICH's Hydra, Slurm's srun) or PMIx set these.
+// OpenMPI's mpirun or a PMI launcher (MPICH's Hydra, Slurm's srun) set these.
 #include <cstdlib>
 #include <string>
 
@@ -8,13 +8,21 @@
 namespace regodem::app {
 
 bool started_as_mpi_rank() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
-    if (std::getenv(name) != nullptr) return true;
+  // OpenMPI's mpirun, on any count (-np 1 included); a PMI launcher only for a job of
+  // several tasks (srun sets PMI_SIZE=1 around any single program).
+  if (std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr) return true;
+  if (const char* size = std::getenv("PMI_SIZE")) {
+    try {
+      return std::stoi(size) > 1;
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
   return false;
 }
 
 int launcher_rank() {
-  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK"})
     if (const char* value = std::getenv(name)) {
       try {
         return std::stoi(value);

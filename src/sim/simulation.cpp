@@ -159,6 +159,7 @@ void Simulation::rebuild_neighbors(bool history_saved) {
     history_saved = true;
     grid_particles = halo_->sum_over_ranks(own_particle_count());
     run_particles_ = grid_particles;
+    every_rank_holds_all_ = false;
     halo_build_pending_ = false;
   }
   // The grid is sized for the current particle count: the counting sort costs one pass

@@ -441,6 +441,7 @@ class Simulation {
   ParticleHalo* halo_ = nullptr;         // under MPI only
   ParticleHalo* gathered_halo_ = nullptr;  // under MPI, between gather_everywhere and distribute_again
   std::size_t run_particles_ = 0;         // distributed: every rank's own, at the last build
+  bool every_rank_holds_all_ = false;     // distributed again since a gather, not yet built
   bool halo_build_pending_ = false;       // distributed since the last build
   std::vector<std::uint8_t> ghost_;       // per particle under MPI, else empty
 

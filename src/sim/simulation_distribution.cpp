@@ -39,6 +39,15 @@ void Simulation::distribute(ParticleHalo* halo) {
 
 void Simulation::gather_everywhere() {
   if (!halo_) return;
+  if (every_rank_holds_all_) {
+    // Split since the last gather but not yet built (a step that failed before its build):
+    // every rank still holds every particle, the same, with one process's lists.
+    gathered_halo_ = halo_;
+    halo_ = nullptr;
+    ghost_.clear();
+    every_rank_holds_all_ = false;
+    return;
+  }
   // The contact history own particles hold, as a build would hand it to the halo.
   neighbors_.save_history(particles);
   ghost_.resize(particles.size(), 0);
@@ -70,6 +79,7 @@ void Simulation::distribute_again() {
   const bool forces_were_current = forces_current_;
   distribute(halo);
   forces_current_ = forces_were_current;
+  every_rank_holds_all_ = true;  // until the next build
 }
 
 std::size_t Simulation::run_particle_count() const { return halo_ ? run_particles_ : particles.size(); }

@@ -410,6 +410,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       while (next_sample_s <= sim.time_s() + 0.5 * step_s) next_sample_s += sample_interval;
     };
     const auto stage_clock = Clock::now();
+    bool checkpoint_wanted = false;  // under MPI, at the next gather
     RecentRate recent_rate;  // a resumed stage times only its own steps
     recent_rate.add(0.0, done);
     // A checkpoint at the top of an iteration: resuming replays that iteration's
@@ -443,7 +444,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           decided = sim.bits_over_ranks(decided);
         }
         if (sim.distributed()) {
-          bool reads_particles = frozen.has_value() || (decided & (stop_now | checkpoint_now)) != 0 ||
+          bool reads_particles = frozen.has_value() || (decided & stop_now) != 0 ||
                                  sim.time_s() + 0.5 * step_s >= next_sample_s ||
                                  snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m()) ||
                                  measurements.due(sim, 0.5 * step_s) ||
@@ -479,6 +480,13 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         }
         if (snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m())) take_snapshot(0.5 * step_s);
         if (!measurements.empty()) measurements.before_step(sim, 0.5 * step_s, observer);
+        // Under MPI a periodic checkpoint waits for the next gather the run makes anyway
+        // (a sample at the latest): a gather of its own would rebuild the lists and change
+        // the run's later sums in the last bit.
+        if (checkpoint_wanted && !sim.distributed()) {
+          checkpoint_here(CheckpointReason::periodic);
+          checkpoint_wanted = false;
+        }
 
         if (ends_by_time && done >= planned_steps) break;
         if (stage.ends_at_depth() && reached_depth(sim, stage)) break;
@@ -517,7 +525,12 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
             failure = fmt::format("interrupted during stage '{}' at t = {:.6g} s", stage.name, sim.time_s());
             break;
           }
-          if (decided & checkpoint_now) checkpoint_here(CheckpointReason::periodic);
+          if (decided & checkpoint_now) {
+            if (sim.distributed())
+              checkpoint_wanted = true;
+            else
+              checkpoint_here(CheckpointReason::periodic);
+          }
           const double since = seconds_since(last_progress_clock);
           if (decided & progress_now) {
             steps_per_s = static_cast<double>(done - last_progress_step) / since;

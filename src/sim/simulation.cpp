@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "contact/contact_law.hpp"
 #include "core/error.hpp"
@@ -392,6 +393,15 @@ double Simulation::first_half_kick_and_drift() {
   }
   if (escaped) {
     if (settings_.lost_particles == LostParticles::stop) report_blow_up("left the domain", time_s_ + dt, step_ + 1);
+    if (halo_) {
+      // Over ranks the lost go at this step's build, which every rank then makes
+      // (redistribute_particles); a non-finite state is a blow-up, raised at the vote.
+      for (std::size_t i = 0; i < n; ++i)
+        if (!(ghost && ghost[i]) && !domain.contains(x[i]) &&
+            !std::isfinite(x[i].x + x[i].y + x[i].z + v[i].x + v[i].y + v[i].z))
+          report_blow_up("left the domain", time_s_ + dt, step_ + 1);
+      return std::numeric_limits<double>::infinity();
+    }
     remove_lost_particles();
     return 0.0;  // the lists were just rebuilt
   }

@@ -229,7 +229,7 @@ class Simulation {
   /// process. Adding or removing particles and setting a velocity between steps are not
   /// yet over ranks (InputError). The walls' forces, torques, power and heat and the contact totals of each
   /// pass are summed over the ranks (in rank order: within round-off of one process's).
-  /// Not yet under MPI (InputError): bonds, removing lost particles. The fastest impact
+  /// Not yet under MPI (InputError): bonds. The fastest impact
   /// is each rank's until gather_everywhere() merges them; a run adds particles, books
   /// the ledgers' reference energies and measures while gathered.
   void distribute(ParticleHalo* halo);
@@ -277,13 +277,14 @@ class Simulation {
   /// Whether the lists must be rebuilt, given this rank's answer (every rank's, under MPI,
   /// where an error met here or on another rank is thrown on all).
   bool rebuild_everywhere(bool here, const std::exception_ptr& failed = nullptr);
-  /// Under MPI, at a build: drops the ghosts and lets the halo move particles and bring
-  /// new ghosts, each with the contact history it owns.
+  /// Under MPI, at a build: drops the ghosts (and, lost_particles: remove, its own
+  /// particles outside the domain, from every rank's books), and lets the halo move
+  /// particles and bring new ghosts, each with the contact history it owns.
   void redistribute_particles();
   /// Throws InputError under MPI: `what` changes one rank's particles between steps, and
   /// the next step's decisions would then not be every rank's (not yet over ranks).
   void refuse_under_ranks(const char* what) const;
-  /// Throws InputError for what does not yet run over MPI ranks (bonds, removing lost particles).
+  /// Throws InputError for what does not yet run over MPI ranks (bonds).
   void refuse_what_ranks_cannot_run() const;
   /// Under MPI, after a contact pass: the walls' forces, torques, power and heat and the
   /// contacts' totals, each rank's own, summed over the ranks.

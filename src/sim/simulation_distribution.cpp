@@ -14,8 +14,6 @@ namespace regodem {
 void Simulation::refuse_what_ranks_cannot_run() const {
   if (!bonds_.empty() || bonds_configured())
     throw InputError("bonds are not yet supported in a run over MPI ranks");
-  if (settings_.lost_particles == LostParticles::remove)
-    throw InputError("domain.lost_particles: remove is not yet supported in a run over MPI ranks");
 }
 
 void Simulation::start_gathered(ParticleHalo* halo) {
@@ -119,6 +117,23 @@ bool Simulation::rebuild_everywhere(bool here, const std::exception_ptr& failed)
 void Simulation::redistribute_particles() {
   neighbors_.save_history(particles);
   ghost_.resize(particles.size(), 0);
+  // Own particles that left the domain go with the ghosts (domain.lost_particles: remove),
+  // their heat and motion out of every rank's books (as remove_lost_particles does in one
+  // process; the books are the run's on every rank), summed in rank order.
+  std::array<double, 3> lost{0.0, 0.0, 0.0};  // thermal energy, mechanical energy, count
+  if (settings_.lost_particles == LostParticles::remove) {
+    for (std::size_t i = 0; i < particles.size(); ++i) {
+      if (ghost_[i] || settings_.domain.contains(particles.position_m[i])) continue;
+      ghost_[i] = 1;
+      if (heat_enabled()) lost[0] += particle_thermal_energy_J(i);
+      lost[1] += particle_mechanical_energy_J(i);
+      lost[2] += 1.0;
+    }
+    halo_->sum_in_rank_order(lost);
+    if (heat_enabled()) ledger_.reference_energy_J -= lost[0];
+    audit_.exchanged_J -= lost[1];
+    lost_particle_count_ += static_cast<std::uint64_t>(lost[2]);
+  }
   ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
   // Each own particle's work: its list entries as owner and as partner, and itself.
   const NeighborList& nl = neighbors_;

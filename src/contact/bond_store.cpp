@@ -19,6 +19,7 @@ void BondStore::add(const ParticleStore& particles, std::uint32_t a, std::uint32
   const Vec3 d = particles.position_m[b] - particles.position_m[a];
   rest_length_m.push_back(norm(d));
   section.push_back(bond_section);
+  sequence.push_back(static_cast<std::uint32_t>(size() - 1));
   resize_state(size());
   set_state(size() - 1, normalized(d), {});
   action.push_back({});
@@ -44,7 +45,7 @@ void BondStore::resize_state(std::size_t bonds) {
   for (std::vector<double>& row : state) row.resize(bonds + kStatePadding, 0.0);
 }
 
-void BondStore::refresh_indices(const ParticleStore& particles) {
+std::size_t BondStore::refresh_indices(const ParticleStore& particles) {
   const std::size_t n = particles.size();
   // (id, index) sorted by id: a look-up that grows with the particles, not the ids.
   std::vector<std::pair<ParticleId, std::uint32_t>> by_id(n);
@@ -58,7 +59,10 @@ void BondStore::refresh_indices(const ParticleStore& particles) {
     local_i[b] = index_of(id_i[b]);
     local_j[b] = index_of(id_j[b]);
   }
+  for (std::size_t b = 0; b < size(); ++b)
+    if (local_i[b] == kNone || local_j[b] == kNone) return b;
   rebuild_per_particle(n);
+  return size();
 }
 
 void BondStore::renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count) {
@@ -82,6 +86,7 @@ void BondStore::remove_broken(const ParticleStore& particles) {
     kind[kept] = kind[b];
     rest_length_m[kept] = rest_length_m[b];
     section[kept] = section[b];
+    sequence[kept] = sequence[b];
     for (std::vector<double>& row : state) row[kept] = row[b];
     action[kept] = action[b];
     heat_to_i_W[kept] = heat_to_i_W[b];
@@ -93,6 +98,7 @@ void BondStore::remove_broken(const ParticleStore& particles) {
   kind.resize(kept);
   rest_length_m.resize(kept);
   section.resize(kept);
+  sequence.resize(kept);
   resize_state(kept);
   action.resize(kept);
   heat_to_i_W.resize(kept);
@@ -104,6 +110,40 @@ void BondStore::remove_with_particles(const ParticleStore& particles, const std:
   for (std::size_t b = 0; b < size(); ++b)
     if (removed[local_i[b]] || removed[local_j[b]]) broken[b] = 1;
   remove_broken(particles);
+}
+
+void BondStore::number_in_order() {
+  sequence.resize(size());
+  for (std::size_t b = 0; b < size(); ++b) sequence[b] = static_cast<std::uint32_t>(b);
+}
+
+void BondStore::append_from(const BondStore& from, std::size_t b) {
+  id_i.push_back(from.id_i[b]);
+  id_j.push_back(from.id_j[b]);
+  local_i.push_back(kNone);
+  local_j.push_back(kNone);
+  kind.push_back(from.kind[b]);
+  rest_length_m.push_back(from.rest_length_m[b]);
+  section.push_back(from.section[b]);
+  sequence.push_back(from.sequence[b]);
+  resize_state(size());
+  for (int row = 0; row < state_rows; ++row) state[row][size() - 1] = from.state[row][b];
+  action.push_back({});
+  heat_to_i_W.push_back(0.0);
+  broken.push_back(0);
+}
+
+void BondStore::keep_in_sequence_order(const std::vector<char>& keep) {
+  std::vector<std::uint32_t> order;
+  for (std::size_t b = 0; b < size(); ++b)
+    if (keep[b]) order.push_back(static_cast<std::uint32_t>(b));
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t c) { return sequence[a] < sequence[c]; });
+  order.erase(std::unique(order.begin(), order.end(),
+                          [&](std::uint32_t a, std::uint32_t c) { return sequence[a] == sequence[c]; }),
+              order.end());
+  BondStore kept;
+  for (const std::uint32_t b : order) kept.append_from(*this, b);
+  *this = std::move(kept);
 }
 
 void BondStore::rebuild_per_particle(std::size_t particle_count) {

@@ -21,6 +21,7 @@ struct BondBreakEvent {
   BondBreak mode = BondBreak::tension;
   ParticleId particle_i = 0, particle_j = 0;
   double tensile_stress_Pa = 0.0, shear_stress_Pa = 0.0;
+  std::uint32_t sequence = 0;  // the bond's (BondStore::sequence): one step's breaks in bond order
 };
 
 /// Bond totals for outputs.
@@ -40,6 +41,10 @@ class BondStore {
   std::vector<std::uint16_t> kind;           // index into the bond parameter table
   std::vector<double> rest_length_m;         // L0, the centre distance at formation
   std::vector<BondSection> section;
+  // Under MPI: the bond's place in the run's bond list when it was last whole on one rank
+  // (Simulation::distribute); a rank keeps its bonds in this order, which is one
+  // process's, so that each particle sums its bonds as one process does.
+  std::vector<std::uint32_t> sequence;
   // The bond's state: the normal n of the last update (from i to j) and the loads, one
   // array per component, so that the bond pass loads and stores a vector of bonds at
   // once (contact/parallel_bond_batch.hpp). Each array holds size() + kStatePadding
@@ -77,8 +82,9 @@ class BondStore {
   /// Appends an unloaded bond between local particles a and b (sizes the scratch fields).
   void add(const ParticleStore& particles, std::uint32_t a, std::uint32_t b, std::uint16_t bond_kind,
            const BondSection& bond_section);
-  /// Finds the local indices from the ids (after a restore), and the CSR.
-  void refresh_indices(const ParticleStore& particles);
+  /// Finds the local indices from the ids (after a restore), and the CSR. Returns the
+  /// first bond with an end not among `particles` (then no CSR), or size() when none.
+  std::size_t refresh_indices(const ParticleStore& particles);
   /// The particles moved: the one at index p is now at new_index_of_old[p] (a sort, a
   /// removal of particles without bonds). Updates the local indices and the CSR.
   void renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count);
@@ -87,6 +93,15 @@ class BondStore {
   /// Removes the bonds with an end flagged in `removed` (by local index; the particles
   /// are about to be removed), then renumber() for the indices past the removal.
   void remove_with_particles(const ParticleStore& particles, const std::vector<char>& removed);
+
+  // Under MPI (a rank holds the bonds with an end among its own particles).
+  /// Numbers the bonds in their order (the store holds the run's whole list).
+  void number_in_order();
+  /// Keeps the bonds flagged, one of each sequence number, in sequence order. The local
+  /// indices are then stale: refresh_indices() finds them.
+  void keep_in_sequence_order(const std::vector<char>& keep);
+  /// Appends bond b of `from` (its identity, section and loads; scratch fields zero).
+  void append_from(const BondStore& from, std::size_t b);
 
  private:
   void rebuild_per_particle(std::size_t particle_count);

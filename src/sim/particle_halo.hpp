@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "contact/bond_store.hpp"
 #include "contact/neighbor_list.hpp"
 #include "core/particle_store.hpp"
 
@@ -34,12 +35,14 @@ class ParticleHalo {
   virtual double max_over_ranks(double mine) = 0;
   /// At a neighbour build. `particles` holds this rank's own particles, `history` their
   /// contact history and `work` what each costs a step (its list entries), particle for
-  /// particle. Cuts the domain again where the work is uneven over the ranks, sends the
-  /// particles outside this rank's brick to their ranks with their history and appends
-  /// those that arrive, then appends copies of the other ranks' particles within reach
-  /// with the history they own; `is_ghost` gets one flag per particle.
+  /// particle; `bonds` the bonds with an end among them. Cuts the domain again where the
+  /// work is uneven over the ranks, sends the particles outside this rank's brick to their
+  /// ranks with their history and bonds and appends those that arrive, then appends copies
+  /// of the other ranks' particles within reach with the history they own; `is_ghost` gets
+  /// one flag per particle, and `bonds` holds those with an end among this rank's own
+  /// particles, in sequence order (their local indices to be found again).
   virtual void redistribute(ParticleStore& particles, ContactHistoryByOwner& history, const std::vector<double>& work,
-                            std::vector<std::uint8_t>& is_ghost) = 0;
+                            std::vector<std::uint8_t>& is_ghost, BondStore& bonds) = 0;
   /// The build sorted the particles: the one now at index i was at order[i].
   virtual void follow_sort(const std::vector<std::uint32_t>& order) = 0;
   /// Between builds, after the particles moved: each ghost's changing fields from its rank.
@@ -47,7 +50,8 @@ class ParticleHalo {
   /// Between steps: replaces `particles` (this rank's own, no ghosts) and `history` (theirs)
   /// by every rank's, on every rank, in id order, with every field (forces included); the
   /// next redistribute() then keeps this rank's brick and sends nothing.
-  virtual void gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history) = 0;
+  /// `bonds` likewise become every rank's, each once, in sequence order (local indices stale).
+  virtual void gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history, BondStore& bonds) = 0;
   /// Every rank's `mine` (the same count on each) on every rank, by rank.
   virtual std::vector<double> values_of_every_rank(std::span<const double> mine) = 0;
   /// The bitwise or of `mine` over the ranks.

@@ -284,8 +284,12 @@ class Simulation {
   /// Throws InputError under MPI: `what` changes one rank's particles between steps, and
   /// the next step's decisions would then not be every rank's (not yet over ranks).
   void refuse_under_ranks(const char* what) const;
-  /// Throws InputError for what does not yet run over MPI ranks (bonds).
-  void refuse_what_ranks_cannot_run() const;
+  /// Under MPI, at a build with lost_particles: remove: flags this rank's particles outside
+  /// the domain as gone and takes every rank's lost particles, and their bonds, out of
+  /// every rank's books and bond list.
+  void drop_lost_over_ranks();
+  /// Under MPI, at a gather: every rank's bond breaks since the split, in one order, counted.
+  void gather_bond_breaks();
   /// Under MPI, after a contact pass: the walls' forces, torques, power and heat and the
   /// contacts' totals, each rank's own, summed over the ranks.
   void sum_totals_over_ranks();
@@ -451,6 +455,7 @@ class Simulation {
   std::vector<int> bond_kind_of_pair_;  // materials x materials, -1: no bond
   BondCounts bond_counts_;
   std::vector<BondBreakEvent> bond_breaks_;  // not yet taken
+  std::size_t bond_breaks_at_split_ = 0;     // under MPI: those from before the split
 };
 
 }  // namespace regodem

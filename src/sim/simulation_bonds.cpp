@@ -51,6 +51,7 @@ std::vector<BondBreakEvent> Simulation::take_bond_breaks() {
 std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>& material_allowed,
                                    const std::vector<char>& region_allowed) {
   if (!bonds_configured()) throw InputError("bonds are formed, but no bond kinds are configured");
+  refuse_under_ranks("forming bonds while the particles are split (gather them first)");
   if (!(gap_fraction >= 0.0)) throw InputError(fmt::format("the bonding gap must be 0 or more, got {}", gap_fraction));
   // A current list holds every pair closer than R_i + R_j + skin.
   rebuild_neighbors();
@@ -248,9 +249,12 @@ void Simulation::apply_bonds(double dt_s) {
   BlockEnergy* __restrict block_energy = block_energy_.data();
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;
   constexpr std::uint32_t kGatherAhead = BondStore::kEntryPadding;
+  // Under MPI a ghost's bonds are its own rank's to sum (and their losses to book).
+  const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
   // Chunks of one block each: a block's sums are one thread's, in particle order.
 #pragma omp parallel for schedule(static, block_size) num_threads(threads) if (n > 4096)
   for (std::size_t q = 0; q < n; ++q) {
+    if (ghost && ghost[q]) continue;
     Vec3 f, t;
     double h = 0.0, loss = 0.0, generated = 0.0;
     // The actions of the entries a few ahead are asked for early (a bond's j end reads
@@ -289,6 +293,8 @@ void Simulation::apply_bonds(double dt_s) {
   for (std::size_t b = 0; b < nb; ++b) {
     if (!bonds_.broken[b]) continue;
     const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
+    // Under MPI both ends' ranks break it; the first end's records it (counted at the gather).
+    if (ghost && ghost[i]) continue;
     const Vec3 n_ij = bonds_.normal_of(b);
     const double length = norm(x[j] - x[i]);
     const BondStresses s = bond_stresses(bonds_.loads_of(b), bonds_.section[b]);
@@ -300,7 +306,8 @@ void Simulation::apply_bonds(double dt_s) {
     e.particle_j = bonds_.id_j[b];
     e.tensile_stress_Pa = s.tensile_Pa;
     e.shear_stress_Pa = s.shear_Pa;
-    (e.mode == BondBreak::tension ? bond_counts_.broken_in_tension : bond_counts_.broken_in_shear)++;
+    e.sequence = bonds_.sequence[b];
+    if (!halo_) (e.mode == BondBreak::tension ? bond_counts_.broken_in_tension : bond_counts_.broken_in_shear)++;
     bond_breaks_.push_back(e);
   }
   bonds_.remove_broken(particles);

@@ -125,6 +125,7 @@ void load_bonds(ByteReader& r, BondStore& b, BondCounts& counts, std::vector<Bon
   if (n != b.id_i.size() || n != b.id_j.size() || n != b.kind.size() || n != b.rest_length_m.size())
     r.fail("the bond arrays differ in length");
   b.section.assign(n, {});
+  b.number_in_order();
   b.resize_state(n);
   b.action.assign(n, {});
   for (std::size_t k = 0; k < n; ++k) {

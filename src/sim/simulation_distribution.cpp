@@ -11,20 +11,16 @@
 
 namespace regodem {
 
-void Simulation::refuse_what_ranks_cannot_run() const {
-  if (!bonds_.empty() || bonds_configured())
-    throw InputError("bonds are not yet supported in a run over MPI ranks");
-}
-
 void Simulation::start_gathered(ParticleHalo* halo) {
-  refuse_what_ranks_cannot_run();
   halo_ = nullptr;
   gathered_halo_ = halo;
 }
 
 void Simulation::distribute(ParticleHalo* halo) {
-  refuse_what_ranks_cannot_run();
   halo_ = halo;
+  // The store holds the run's whole bond list: each rank keeps its bonds in this order.
+  bonds_.number_in_order();
+  bond_breaks_at_split_ = bond_breaks_.size();
   halo_build_pending_ = halo != nullptr;
   // The next build makes the grid afresh for all ranks' particles (the lists' order, and
   // every sum over them, follow the grid): a grid kept from this rank's own count would not
@@ -51,7 +47,8 @@ void Simulation::gather_everywhere() {
   ghost_.resize(particles.size(), 0);
   ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
   particles.remove_if(std::vector<char>(ghost_.begin(), ghost_.end()));
-  halo_->gather_everywhere(particles, history);
+  halo_->gather_everywhere(particles, history, bonds_);
+  gather_bond_breaks();
   // The fastest impact of any rank (the larger key; on a tie the lowest rank's).
   const ImpactRecord mine = fastest_impact_;
   const std::vector<double> impacts = halo_->values_of_every_rank(std::array<double, 4>{
@@ -64,10 +61,46 @@ void Simulation::gather_everywhere() {
   halo_ = nullptr;
   ghost_.clear();
   neighbors_.set_saved_history(std::move(history));
+  if (const std::size_t b = bonds_.refresh_indices(particles); b < bonds_.size())
+    throw SimulationError(fmt::format("bond {}-{} lost an end in the gather", bonds_.id_i[b], bonds_.id_j[b]));
   grid_ = CellGrid{};
   // One process's lists over all particles: a checkpoint saves them; the forces came with
   // the particles, so the next step goes on from them as it would have.
   rebuild_neighbors(true);
+}
+
+void Simulation::gather_bond_breaks() {
+  // The breaks since the split, each recorded by the rank of its bond's first end: every
+  // rank's, by time and then bond (the order one process records them in), and counted.
+  std::vector<double> mine;
+  for (std::size_t e = bond_breaks_at_split_; e < bond_breaks_.size(); ++e) {
+    const BondBreakEvent& b = bond_breaks_[e];
+    mine.insert(mine.end(), {b.time_s, b.position_m.x, b.position_m.y, b.position_m.z, static_cast<double>(b.mode),
+                             static_cast<double>(b.particle_i), static_cast<double>(b.particle_j), b.tensile_stress_Pa,
+                             b.shear_stress_Pa, static_cast<double>(b.sequence)});
+  }
+  bond_breaks_.resize(bond_breaks_at_split_);
+  const std::vector<double> all = halo_->values_of_every_rank(mine);
+  std::vector<BondBreakEvent> merged;
+  for (std::size_t at = 0; at + 10 <= all.size(); at += 10) {
+    BondBreakEvent e;
+    e.time_s = all[at];
+    e.position_m = {all[at + 1], all[at + 2], all[at + 3]};
+    e.mode = static_cast<BondBreak>(static_cast<int>(all[at + 4]));
+    e.particle_i = static_cast<ParticleId>(all[at + 5]);
+    e.particle_j = static_cast<ParticleId>(all[at + 6]);
+    e.tensile_stress_Pa = all[at + 7];
+    e.shear_stress_Pa = all[at + 8];
+    e.sequence = static_cast<std::uint32_t>(all[at + 9]);
+    merged.push_back(e);
+  }
+  std::stable_sort(merged.begin(), merged.end(), [](const BondBreakEvent& a, const BondBreakEvent& b) {
+    return a.time_s != b.time_s ? a.time_s < b.time_s : a.sequence < b.sequence;
+  });
+  for (const BondBreakEvent& e : merged) {
+    (e.mode == BondBreak::tension ? bond_counts_.broken_in_tension : bond_counts_.broken_in_shear)++;
+    bond_breaks_.push_back(e);
+  }
 }
 
 void Simulation::distribute_again() {
@@ -120,20 +153,7 @@ void Simulation::redistribute_particles() {
   // Own particles that left the domain go with the ghosts (domain.lost_particles: remove),
   // their heat and motion out of every rank's books (as remove_lost_particles does in one
   // process; the books are the run's on every rank), summed in rank order.
-  std::array<double, 3> lost{0.0, 0.0, 0.0};  // thermal energy, mechanical energy, count
-  if (settings_.lost_particles == LostParticles::remove) {
-    for (std::size_t i = 0; i < particles.size(); ++i) {
-      if (ghost_[i] || settings_.domain.contains(particles.position_m[i])) continue;
-      ghost_[i] = 1;
-      if (heat_enabled()) lost[0] += particle_thermal_energy_J(i);
-      lost[1] += particle_mechanical_energy_J(i);
-      lost[2] += 1.0;
-    }
-    halo_->sum_in_rank_order(lost);
-    if (heat_enabled()) ledger_.reference_energy_J -= lost[0];
-    audit_.exchanged_J -= lost[1];
-    lost_particle_count_ += static_cast<std::uint64_t>(lost[2]);
-  }
+  if (settings_.lost_particles == LostParticles::remove) drop_lost_over_ranks();
   ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
   // Each own particle's work: its list entries as owner and as partner, and itself.
   const NeighborList& nl = neighbors_;
@@ -145,11 +165,66 @@ void Simulation::redistribute_particles() {
       work.push_back(listed ? 1.0 + (nl.offset[i + 1] - nl.offset[i]) + (nl.owner_offset[i + 1] - nl.owner_offset[i])
                             : 1.0);
   particles.remove_if(std::vector<char>(ghost_.begin(), ghost_.end()));
-  halo_->redistribute(particles, history, work, ghost_);
+  halo_->redistribute(particles, history, work, ghost_, bonds_);
   if (ghost_.size() != particles.size() || history.owners() != particles.size())
     throw SimulationError(fmt::format("the halo returned {} particles with {} ghost flags and {} histories",
                                       particles.size(), ghost_.size(), history.owners()));
   neighbors_.set_saved_history(std::move(history));
+  if (bonds_configured()) {
+    // Each bond of this rank's particles needs its other end here, own or ghost.
+    std::exception_ptr stretched;
+    if (const std::size_t b = bonds_.refresh_indices(particles); b < bonds_.size())
+      stretched = std::make_exception_ptr(SimulationError(fmt::format(
+          "the bond between particles {} and {} reaches farther than the ghosts ({:.4g} m from a rank's brick): its "
+          "ends are more than two radii and the skin apart, which an intact bond should not be",
+          bonds_.id_i[b], bonds_.id_j[b], ghost_reach_m(settings_.max_particle_radius_m))));
+    halo_->agree(stretched);
+  }
+}
+
+void Simulation::drop_lost_over_ranks() {
+  // Own particles that left the domain go with the ghosts, their heat and motion out of
+  // every rank's books (as remove_lost_particles does in one process; the books are the
+  // run's on every rank): each rank's sums and lost ids on every rank, added in rank order.
+  const std::vector<std::uint8_t> was_ghost = ghost_;
+  std::vector<double> mine{0.0, 0.0, 0.0};  // thermal energy, mechanical energy, count; then the ids
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (ghost_[i] || settings_.domain.contains(particles.position_m[i])) continue;
+    ghost_[i] = 1;
+    if (heat_enabled()) mine[0] += particle_thermal_energy_J(i);
+    mine[1] += particle_mechanical_energy_J(i);
+    mine[2] += 1.0;
+    mine.push_back(static_cast<double>(particles.id[i]));
+  }
+  const std::vector<double> all = halo_->values_of_every_rank(mine);
+  double thermal_J = 0.0, mechanical_J = 0.0;
+  std::vector<ParticleId> lost_ids;
+  for (std::size_t at = 0; at + 3 <= all.size();) {
+    thermal_J += all[at];
+    mechanical_J += all[at + 1];
+    const auto count = static_cast<std::size_t>(all[at + 2]);
+    for (std::size_t k = 0; k < count; ++k) lost_ids.push_back(static_cast<ParticleId>(all[at + 3 + k]));
+    at += 3 + count;
+  }
+  if (heat_enabled()) ledger_.reference_energy_J -= thermal_J;
+  audit_.exchanged_J -= mechanical_J;
+  lost_particle_count_ += lost_ids.size();
+  if (lost_ids.empty() || bonds_.empty()) return;
+  // Their bonds go too (not broken: nothing failed in them), what they stored booked once,
+  // by the rank of each bond's first end.
+  std::sort(lost_ids.begin(), lost_ids.end());
+  const auto is_lost = [&](ParticleId id) { return std::binary_search(lost_ids.begin(), lost_ids.end(), id); };
+  std::vector<char> keep(bonds_.size(), 1);
+  double stored_J = 0.0;
+  for (std::size_t b = 0; b < bonds_.size(); ++b) {
+    if (!is_lost(bonds_.id_i[b]) && !is_lost(bonds_.id_j[b])) continue;
+    keep[b] = 0;
+    if (!was_ghost[bonds_.local_i[b]])
+      stored_J += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
+  }
+  halo_->sum_in_rank_order(std::span<double>(&stored_J, 1));
+  if (keeps_energy_audit()) audit_.exchanged_J -= stored_J;
+  bonds_.keep_in_sequence_order(keep);
 }
 
 void Simulation::sum_totals_over_ranks() {

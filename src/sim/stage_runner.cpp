@@ -346,7 +346,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     std::string failure;
     StageResult result = StageResult::finished;
     try {
-      if (stage.freezes_mechanics()) sim.gather_everywhere();  // under MPI, every rank steps the whole bed's heat
+      // Under MPI: bonds form, and a static bed's heat is stepped, on the whole run.
+      if (stage.freezes_mechanics() || (stage.form_bonds && !inside)) sim.gather_everywhere();
       if (stage.form_bonds && !inside) {
         const BondFormation& f = *stage.form_bonds;
         const std::size_t formed = sim.form_bonds(f.gap_fraction, f.materials, f.regions);
@@ -452,6 +453,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           for (const Insertion* ins : active)
             reads_particles = reads_particles || (!ins->finished && sim.time_s() + 0.5 * dt >= ins->next_attempt_s());
           if (reads_particles) sim.gather_everywhere();
+          // Bonds broken on any rank since the split, now every rank's (in one order).
+          if (!sim.distributed() && sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
         }
         bool insertions_done = true;
         for (Insertion* ins : active) {
@@ -572,7 +575,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           const bool resolved_before = impacts_resolved(sim);
           sim.distribute_again();
           sim.step();
-          if (sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
+          if (!sim.distributed() && sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
           if (resolved_before && !impacts_resolved(sim)) observer.notice(unresolved_impact_notice(sim, stage.name));
         }
         ++done;
@@ -585,6 +588,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       failure = fmt::format("stage '{}' failed: {}", stage.name, e.what());
     }
     sim.gather_everywhere();  // the stage's end reads the particles (under MPI)
+    if (sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
     if (result == StageResult::finished) {
       if (last_sampled_time_s != sim.time_s()) sample();
       for (Insertion* ins : active) {

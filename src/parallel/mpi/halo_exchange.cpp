@@ -7,14 +7,18 @@
 
 #include "core/error.hpp"
 #include "parallel/mpi/particle_exchange.hpp"
+#include "parallel/bond_transfer.hpp"
 #include "parallel/particle_transfer.hpp"
 
 namespace regodem {
 namespace {
 
-// A message: the particles (pack_particles), then each one's contact count and contacts.
+// A message: the particles (pack_particles), then each one's contact count and contacts,
+// then (migration, a gather) the bonds given.
 std::vector<std::byte> pack_with_history(ParticleStore& particles, const ContactHistoryByOwner& history,
-                                         const std::vector<std::uint32_t>& indices, ParticleTransfer kind) {
+                                         const std::vector<std::uint32_t>& indices, ParticleTransfer kind,
+                                         const BondStore* bonds = nullptr,
+                                         const std::vector<std::uint32_t>& bond_indices = {}) {
   std::vector<std::byte> bytes;
   pack_particles(particles, indices, kind, bytes);
   const auto append = [&](const void* data, std::size_t size) {
@@ -27,6 +31,7 @@ std::vector<std::byte> pack_with_history(ParticleStore& particles, const Contact
     append(&count, sizeof count);
     append(history.contacts.data() + history.begin[p], count * sizeof(SavedContact));
   }
+  if (bonds) pack_bonds(*bonds, bond_indices, bytes);
   return bytes;
 }
 
@@ -34,7 +39,7 @@ std::vector<std::byte> pack_with_history(ParticleStore& particles, const Contact
 // the index range each message's particles took.
 std::vector<std::pair<std::uint32_t, std::uint32_t>> unpack_with_history(
     const std::vector<std::vector<std::byte>>& messages, ParticleTransfer kind, ParticleStore& particles,
-    ContactHistoryByOwner& history) {
+    ContactHistoryByOwner& history, BondStore* bonds = nullptr) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges(messages.size());
   for (std::size_t r = 0; r < messages.size(); ++r) {
     const std::vector<std::byte>& message = messages[r];
@@ -57,6 +62,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> unpack_with_history(
       take(history.contacts.data() + from, count * sizeof(SavedContact));
       history.begin.push_back(static_cast<std::uint32_t>(history.contacts.size()));
     }
+    if (bonds) at += unpack_bonds(std::span<const std::byte>(message).subspan(at), *bonds);
     if (at != message.size())
       throw SimulationError(fmt::format("a particle message of {} bytes held {} more", message.size(),
                                         message.size() - at));
@@ -76,6 +82,40 @@ void remove_history(ContactHistoryByOwner& history, const std::vector<char>& rem
     kept.begin.push_back(static_cast<std::uint32_t>(kept.contacts.size()));
   }
   history = std::move(kept);
+}
+
+// Keeps the bonds with an end among the first `own` particles, once each, in sequence order.
+void keep_bonds_of_own(BondStore& bonds, const ParticleStore& particles, std::size_t own) {
+  if (bonds.empty()) return;
+  std::vector<ParticleId> ids(particles.id.begin(), particles.id.begin() + static_cast<std::ptrdiff_t>(own));
+  std::sort(ids.begin(), ids.end());
+  std::vector<char> keep(bonds.size(), 0);
+  for (std::size_t b = 0; b < bonds.size(); ++b)
+    keep[b] = std::binary_search(ids.begin(), ids.end(), bonds.id_i[b]) ||
+              std::binary_search(ids.begin(), ids.end(), bonds.id_j[b]);
+  bonds.keep_in_sequence_order(keep);
+}
+
+// For each rank, the bonds of the particles leaving for it (a bond whose two ends leave
+// for the same rank once).
+std::vector<std::vector<std::uint32_t>> bonds_leaving(const BondStore& bonds, const ParticleStore& particles,
+                                                      const std::vector<std::vector<std::uint32_t>>& to_rank) {
+  std::vector<std::vector<std::uint32_t>> by_rank(to_rank.size());
+  if (bonds.empty()) return by_rank;
+  std::vector<std::pair<ParticleId, int>> leaving;
+  for (std::size_t r = 0; r < to_rank.size(); ++r)
+    for (const std::uint32_t p : to_rank[r]) leaving.emplace_back(particles.id[p], static_cast<int>(r));
+  std::sort(leaving.begin(), leaving.end());
+  const auto rank_of = [&](ParticleId id) {
+    const auto it = std::lower_bound(leaving.begin(), leaving.end(), std::pair<ParticleId, int>{id, -1});
+    return it != leaving.end() && it->first == id ? it->second : -1;
+  };
+  for (std::size_t b = 0; b < bonds.size(); ++b) {
+    const int ri = rank_of(bonds.id_i[b]), rj = rank_of(bonds.id_j[b]);
+    if (ri >= 0) by_rank[static_cast<std::size_t>(ri)].push_back(static_cast<std::uint32_t>(b));
+    if (rj >= 0 && rj != ri) by_rank[static_cast<std::size_t>(rj)].push_back(static_cast<std::uint32_t>(b));
+  }
+  return by_rank;
 }
 
 }  // namespace
@@ -136,7 +176,8 @@ std::size_t HaloExchange::ghost_count() const {
 }
 
 void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner& history,
-                                const std::vector<double>& work, std::vector<std::uint8_t>& is_ghost) {
+                                const std::vector<double>& work, std::vector<std::uint8_t>& is_ghost,
+                                BondStore& bonds) {
   const auto ranks = static_cast<std::size_t>(comm_.size());
   const int me = comm_.rank();
   if (history.owners() != particles.size() || work.size() != particles.size())
@@ -161,13 +202,16 @@ void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner&
     remove_history(history, leaves);
     replicated_ = false;
   } else {
+    // A bond goes with each of its ends that moves; the ranks of its ends keep it.
+    const std::vector<std::vector<std::uint32_t>> bonds_to = bonds_leaving(bonds, particles, to_rank);
     for (std::size_t r = 0; r < ranks; ++r)
       if (!to_rank[r].empty())
-        messages[r] = pack_with_history(particles, history, to_rank[r], ParticleTransfer::migration);
+        messages[r] = pack_with_history(particles, history, to_rank[r], ParticleTransfer::migration, &bonds, bonds_to[r]);
     particles.remove_if(leaves);
     remove_history(history, leaves);
-    unpack_with_history(comm_.exchange(messages), ParticleTransfer::migration, particles, history);
+    unpack_with_history(comm_.exchange(messages), ParticleTransfer::migration, particles, history, &bonds);
   }
+  keep_bonds_of_own(bonds, particles, particles.size());
   const std::size_t own = particles.size();
   // A particle outside every brick (the bricks do not tile the domain) would miss partners;
   // the error stops every rank.
@@ -216,16 +260,23 @@ void HaloExchange::refresh_ghosts(ParticleStore& particles) {
   }
 }
 
-void HaloExchange::gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history) {
+void HaloExchange::gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history, BondStore& bonds) {
   if (history.owners() != particles.size())
     throw SimulationError(
         fmt::format("{} particles with {} contact histories to gather", particles.size(), history.owners()));
   std::vector<std::uint32_t> every(particles.size());
   for (std::size_t i = 0; i < every.size(); ++i) every[i] = static_cast<std::uint32_t>(i);
-  const std::vector<std::byte> mine = pack_with_history(particles, history, every, ParticleTransfer::whole);
+  std::vector<std::uint32_t> every_bond(bonds.size());
+  for (std::size_t b = 0; b < every_bond.size(); ++b) every_bond[b] = static_cast<std::uint32_t>(b);
+  const std::vector<std::byte> mine =
+      pack_with_history(particles, history, every, ParticleTransfer::whole, &bonds, every_bond);
   ParticleStore all;
   ContactHistoryByOwner all_history;
-  unpack_with_history(comm_.gather_to_all(mine), ParticleTransfer::whole, all, all_history);
+  BondStore all_bonds;
+  unpack_with_history(comm_.gather_to_all(mine), ParticleTransfer::whole, all, all_history, &all_bonds);
+  // A bond between two ranks' particles came from both: once each, in the run's order.
+  all_bonds.keep_in_sequence_order(std::vector<char>(all_bonds.size(), 1));
+  bonds = std::move(all_bonds);
   all.set_next_id(particles.next_id());  // every rank's: insertion takes the same ids everywhere
   // In id order: the same store on every rank, whatever the split.
   std::vector<std::uint32_t> order(all.size());

@@ -34,10 +34,10 @@ class HaloExchange final : public ParticleHalo {
   void sum_in_rank_order(std::span<double> values) override { comm_.sum_in_rank_order(values); }
   double max_over_ranks(double mine) override { return comm_.max(mine); }
   void redistribute(ParticleStore& particles, ContactHistoryByOwner& history, const std::vector<double>& work,
-                    std::vector<std::uint8_t>& is_ghost) override;
+                    std::vector<std::uint8_t>& is_ghost, BondStore& bonds) override;
   void follow_sort(const std::vector<std::uint32_t>& order) override;
   void refresh_ghosts(ParticleStore& particles) override;
-  void gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history) override;
+  void gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history, BondStore& bonds) override;
   std::vector<double> values_of_every_rank(std::span<const double> mine) override;
   std::uint32_t bits_over_ranks(std::uint32_t mine) override { return comm_.bits_or(mine); }
 

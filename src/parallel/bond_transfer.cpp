@@ -1,0 +1,62 @@
+#include "parallel/bond_transfer.hpp"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+#include "core/error.hpp"
+
+namespace regodem {
+namespace {
+
+// One bond's bytes: its fields one after another, the state rows last.
+template <typename Store, typename F>  // Store: BondStore or const BondStore
+void for_each_bond_value(Store& bonds, std::size_t b, F&& f) {
+  f(&bonds.id_i[b], sizeof(ParticleId));
+  f(&bonds.id_j[b], sizeof(ParticleId));
+  f(&bonds.kind[b], sizeof(std::uint16_t));
+  f(&bonds.rest_length_m[b], sizeof(double));
+  f(&bonds.section[b], sizeof(BondSection));
+  f(&bonds.sequence[b], sizeof(std::uint32_t));
+  for (auto& row : bonds.state) f(&row[b], sizeof(double));
+}
+
+}  // namespace
+
+void pack_bonds(const BondStore& bonds, std::span<const std::uint32_t> indices, std::vector<std::byte>& bytes) {
+  const auto append = [&](const void* data, std::size_t size) {
+    const std::size_t at = bytes.size();
+    bytes.resize(at + size);
+    std::memcpy(bytes.data() + at, data, size);
+  };
+  const std::uint64_t count = indices.size();
+  append(&count, sizeof count);
+  for (const std::uint32_t b : indices) for_each_bond_value(bonds, b, append);
+}
+
+std::size_t unpack_bonds(std::span<const std::byte> bytes, BondStore& bonds) {
+  std::size_t at = 0;
+  const auto take = [&](void* data, std::size_t size) {
+    if (at + size > bytes.size())
+      throw SimulationError(fmt::format("a bond message ends early: {} bytes, {} needed", bytes.size(), at + size));
+    std::memcpy(data, bytes.data() + at, size);
+    at += size;
+  };
+  std::uint64_t count = 0;
+  take(&count, sizeof count);
+  BondStore one;
+  one.id_i.resize(1);
+  one.id_j.resize(1);
+  one.kind.resize(1);
+  one.rest_length_m.resize(1);
+  one.section.resize(1);
+  one.sequence.resize(1);
+  one.resize_state(1);
+  for (std::uint64_t k = 0; k < count; ++k) {
+    for_each_bond_value(one, 0, take);
+    bonds.append_from(one, 0);
+  }
+  return at;
+}
+
+}  // namespace regodem

@@ -21,6 +21,7 @@
 #include <string>
 
 #include "bench_threads.hpp"
+#include "drilling_window.hpp"
 #include "io/checkpoint_file.hpp"
 #include "scenario/scenario_builder.hpp"
 #include "scenario/scenario_reader.hpp"
@@ -28,21 +29,6 @@
 
 namespace regodem::bench {
 namespace {
-
-constexpr std::uint64_t kWindowSteps = 1500;
-
-/// The checkpoint file: REGODEM_DRILLING_WINDOW, else the one make_drilling_window.sh
-/// named in the cache; empty when there is none.
-std::string window_checkpoint_path() {
-  if (const char* given = std::getenv("REGODEM_DRILLING_WINDOW")) return given;
-  const char* cache = std::getenv("REGODEM_BENCH_CACHE");
-  const std::filesystem::path pointer =
-      std::filesystem::path(cache ? cache : ".") / "drilling-window" / "window-checkpoint.txt";
-  std::ifstream in(pointer);
-  std::string path;
-  std::getline(in, path);
-  return path;
-}
 
 struct Window {
   PreparedRun run;
@@ -54,9 +40,7 @@ Window& window_for(int threads) {
   std::unique_ptr<Window>& slot = built[threads];
   if (!slot) {
     const std::string checkpoint_path = window_checkpoint_path();
-    const char* source = std::getenv("REGODEM_SOURCE_DIR");
-    const std::string scenario =
-        std::string(source ? source : REGODEM_SOURCE_DIR) + "/scenarios/paper/drill-sieve-reduced.yaml";
+    const std::string scenario = window_scenario_path(REGODEM_SOURCE_DIR);
     // The grains come from the window itself (restored below); the bed is not needed.
     const ScenarioSpec spec = read_scenario_file(scenario, {"initial_state.checkpoint=" + checkpoint_path});
     slot = std::make_unique<Window>(Window{PreparedRun::build(spec, threads), read_checkpoint_file(checkpoint_path)});

@@ -42,7 +42,8 @@ class BondStore {
   std::vector<double> rest_length_m;         // L0, the centre distance at formation
   std::vector<BondSection> section;
   // Under MPI: the bond's place in the run's bond list when it was last whole on one rank
-  // (Simulation::distribute); a rank keeps its bonds in this order, which is one
+  // (numbered by number_in_order() when the run splits; add() and a removal leave it
+  // meaningless until then); a rank keeps its bonds in this order, which is one
   // process's, so that each particle sums its bonds as one process does.
   std::vector<std::uint32_t> sequence;
   // The bond's state: the normal n of the last update (from i to j) and the loads, one
@@ -84,7 +85,7 @@ class BondStore {
            const BondSection& bond_section);
   /// Finds the local indices from the ids (after a restore), and the CSR. Returns the
   /// first bond with an end not among `particles` (then no CSR), or size() when none.
-  std::size_t refresh_indices(const ParticleStore& particles);
+  [[nodiscard]] std::size_t refresh_indices(const ParticleStore& particles);
   /// The particles moved: the one at index p is now at new_index_of_old[p] (a sort, a
   /// removal of particles without bonds). Updates the local indices and the CSR.
   void renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count);

@@ -52,7 +52,7 @@ class ParticleHalo {
   /// next redistribute() then keeps this rank's brick and sends nothing.
   /// `bonds` likewise become every rank's, each once, in sequence order (local indices stale).
   virtual void gather_everywhere(ParticleStore& particles, ContactHistoryByOwner& history, BondStore& bonds) = 0;
-  /// Every rank's `mine` (the same count on each) on every rank, by rank.
+  /// Every rank's `mine` (any count on each) on every rank, one after another by rank.
   virtual std::vector<double> values_of_every_rank(std::span<const double> mine) = 0;
   /// The bitwise or of `mine` over the ranks.
   virtual std::uint32_t bits_over_ranks(std::uint32_t mine) = 0;

@@ -43,6 +43,9 @@ BondCounts Simulation::bond_counts() const {
 }
 
 std::vector<BondBreakEvent> Simulation::take_bond_breaks() {
+  // Under MPI only gathered (distributed, each rank holds its own since the split).
+  refuse_under_ranks("taking the bond breaks while the particles are split");
+  bond_breaks_at_split_ = 0;
   std::vector<BondBreakEvent> taken;
   taken.swap(bond_breaks_);
   return taken;
@@ -92,7 +95,8 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
                  BondSection::of_radius(p.radius_multiplier * std::min(ri, rj)));
     }
   }
-  bonds_.refresh_indices(particles);
+  if (bonds_.refresh_indices(particles) < bonds_.size())
+    throw SimulationError("a bond was formed to a particle that is not in the store");
   const std::size_t formed = bonds_.size() - before;
   bond_counts_.formed += formed;
 

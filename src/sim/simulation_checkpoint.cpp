@@ -505,9 +505,7 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     load_bonds(r, bonds_, bond_counts_, bond_breaks_);
     for (std::uint16_t k : bonds_.kind)
       if (k >= bond_kinds_.size()) r.fail(fmt::format("has a bond of kind {}, the scenario {} kinds", k, bond_kinds_.size()));
-    bonds_.refresh_indices(particles);
-    for (std::size_t b = 0; b < bonds_.size(); ++b)
-      if (bonds_.local_i[b] >= n || bonds_.local_j[b] >= n) r.fail("has a bond to a particle that does not exist");
+    if (bonds_.refresh_indices(particles) < bonds_.size()) r.fail("has a bond to a particle that does not exist");
   }
   bool books_kept = false;
   if (checkpoint.has(kEnergyAudit)) {
@@ -606,9 +604,8 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
     bond_counts_ = {};
     bond_counts_.formed = bonds_.size();
     for (std::size_t b = 0; b < bonds_.size(); ++b) bonds_.broken[b] = 0;
-    bonds_.refresh_indices(particles);  // the saved order, which the rebuild then sorts
-    for (std::size_t b = 0; b < bonds_.size(); ++b)
-      if (bonds_.local_i[b] >= n || bonds_.local_j[b] >= n) r.fail("has a bond to a particle that does not exist");
+    // The saved order, which the rebuild then sorts.
+    if (bonds_.refresh_indices(particles) < bonds_.size()) r.fail("has a bond to a particle that does not exist");
   }
   audit_.exchanged_J += bond_elastic_energy_J();  // the adopted bonds' loads
   // Sorts the particles and carries the springs over; renumbers the bonds.

@@ -187,6 +187,9 @@ void Simulation::drop_lost_over_ranks() {
   // every rank's books (as remove_lost_particles does in one process; the books are the
   // run's on every rank): each rank's sums and lost ids on every rank, added in rank order.
   const std::vector<std::uint8_t> was_ghost = ghost_;
+  // At the first build after a gather every rank still holds every particle as its own:
+  // each finds the same lost ones, which count once (rank 0's), and holds every bond.
+  const bool everyone_holds_all = every_rank_holds_all_;
   std::vector<double> mine{0.0, 0.0, 0.0};  // thermal energy, mechanical energy, count; then the ids
   for (std::size_t i = 0; i < particles.size(); ++i) {
     if (ghost_[i] || settings_.domain.contains(particles.position_m[i])) continue;
@@ -199,17 +202,19 @@ void Simulation::drop_lost_over_ranks() {
   const std::vector<double> all = halo_->values_of_every_rank(mine);
   double thermal_J = 0.0, mechanical_J = 0.0;
   std::vector<ParticleId> lost_ids;
-  for (std::size_t at = 0; at + 3 <= all.size();) {
-    thermal_J += all[at];
-    mechanical_J += all[at + 1];
+  for (std::size_t at = 0, rank = 0; at + 3 <= all.size(); ++rank) {
     const auto count = static_cast<std::size_t>(all[at + 2]);
-    for (std::size_t k = 0; k < count; ++k) lost_ids.push_back(static_cast<ParticleId>(all[at + 3 + k]));
+    if (!everyone_holds_all || rank == 0) {
+      thermal_J += all[at];
+      mechanical_J += all[at + 1];
+      for (std::size_t k = 0; k < count; ++k) lost_ids.push_back(static_cast<ParticleId>(all[at + 3 + k]));
+    }
     at += 3 + count;
   }
   if (heat_enabled()) ledger_.reference_energy_J -= thermal_J;
   audit_.exchanged_J -= mechanical_J;
   lost_particle_count_ += lost_ids.size();
-  if (lost_ids.empty() || bonds_.empty()) return;
+  if (lost_ids.empty() || !bonds_configured()) return;  // the same on every rank
   // Their bonds go too (not broken: nothing failed in them), what they stored booked once,
   // by the rank of each bond's first end.
   std::sort(lost_ids.begin(), lost_ids.end());
@@ -222,7 +227,7 @@ void Simulation::drop_lost_over_ranks() {
     if (!was_ghost[bonds_.local_i[b]])
       stored_J += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
   }
-  halo_->sum_in_rank_order(std::span<double>(&stored_J, 1));
+  if (!everyone_holds_all) halo_->sum_in_rank_order(std::span<double>(&stored_J, 1));
   if (keeps_energy_audit()) audit_.exchanged_J -= stored_J;
   bonds_.keep_in_sequence_order(keep);
 }

@@ -125,6 +125,18 @@ lost = float(table[-1][header.index("particles_lost [-]")])
 check(lost >= 100, f"the spill lost {lost:.0f} of its 160 grains, not most of them")
 for ranks in (2, 3):
     compare_runs(spills[1], spills[ranks], f"spill on {ranks} ranks against 1")
+# Sampled every step, every step follows a gather, where each rank still holds every
+# grain as its own when one leaves: it must still count once.
+for ranks in (1, 2):
+    out = WORK / f"spill_every_step{ranks}"
+    result = mpirun(ranks, "run", str(SCENARIOS / "over_ranks_spill.yaml"), "-o", str(out), "--overwrite",
+                    "--set", "output.interval=1e-9 s", "--set", "stages.pour.duration=0.2 s")
+    check(result.returncode == 0, f"spill sampled every step on {ranks} ranks: exit status {result.returncode}\n"
+                                  f"{result.stderr[-2000:]}")
+    spills[f"every{ranks}"] = out
+header, table = rows(spills["every1"] / "time_series.csv")
+check(float(table[-1][header.index("particles_lost [-]")]) >= 20, "the spill sampled every step lost too few grains")
+compare_runs(spills["every1"], spills["every2"], "spill sampled every step on 2 ranks against 1")
 
 # The tiny drilling model: bonds formed over the bed (many across the bricks), a turning
 # auger mesh, a lumped sieve, grains lost: the same bonds broken (bond_breaks.csv byte for

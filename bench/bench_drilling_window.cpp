@@ -22,6 +22,7 @@
 
 #include "bench_threads.hpp"
 #include "drilling_window.hpp"
+#include "state_hash.hpp"
 #include "io/checkpoint_file.hpp"
 #include "scenario/scenario_builder.hpp"
 #include "scenario/scenario_reader.hpp"
@@ -77,20 +78,9 @@ void BM_DrillingWindow(benchmark::State& state) {
       static_cast<double>(sim.contact_statistics().particle_contacts) / static_cast<double>(sim.particles.size());
   state.counters["bonds_per_particle"] =
       static_cast<double>(sim.bonds().size()) / static_cast<double>(sim.particles.size());
-  // A 32-bit FNV-1a hash of every particle's id, position, velocity, spin and temperature
-  // after the window: the same on every thread count, bit for bit (docs/architecture.md).
-  std::uint32_t hash = 2166136261u;
-  const auto mix = [&](const auto& value) {
-    const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
-    for (std::size_t k = 0; k < sizeof value; ++k) hash = (hash ^ bytes[k]) * 16777619u;
-  };
-  for (std::size_t p = 0; p < sim.particles.size(); ++p) {
-    mix(sim.particles.id[p]);
-    mix(sim.particles.position_m[p]);
-    mix(sim.particles.velocity_m_per_s[p]);
-    mix(sim.particles.angular_velocity_rad_per_s[p]);
-    mix(sim.particles.temperature_K[p]);
-  }
+  // The state after the window: the same on every thread count, bit for bit
+  // (docs/architecture.md).
+  const std::uint32_t hash = state_hash(sim.particles);
   state.counters["state_hash"] = static_cast<double>(hash);
   for (const WallBody& body : sim.walls.bodies)
     if (body.name == "drill") state.counters["drill_depth_mm"] = 1e3 * (body.depth_at_start_m + body.travel_m);

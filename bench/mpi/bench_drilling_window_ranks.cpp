@@ -18,7 +18,9 @@
 #include <string>
 
 #include "../drilling_window.hpp"
+#include "../state_hash.hpp"
 #include "io/checkpoint_file.hpp"
+#include "mpi_bench_main.hpp"
 #include "parallel/mpi/halo_exchange.hpp"
 #include "scenario/scenario_builder.hpp"
 #include "scenario/scenario_reader.hpp"
@@ -26,22 +28,6 @@
 
 namespace regodem::bench {
 namespace {
-
-std::uint32_t state_hash(const ParticleStore& particles) {
-  std::uint32_t hash = 2166136261u;  // FNV-1a, as bench_drilling_window's
-  const auto mix = [&](const auto& value) {
-    const auto* bytes = reinterpret_cast<const unsigned char*>(&value);
-    for (std::size_t k = 0; k < sizeof value; ++k) hash = (hash ^ bytes[k]) * 16777619u;
-  };
-  for (std::size_t p = 0; p < particles.size(); ++p) {
-    mix(particles.id[p]);
-    mix(particles.position_m[p]);
-    mix(particles.velocity_m_per_s[p]);
-    mix(particles.angular_velocity_rad_per_s[p]);
-    mix(particles.temperature_K[p]);
-  }
-  return hash;
-}
 
 int run(int argc, char** argv) {
   const Communicator comm;
@@ -96,15 +82,4 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace regodem::bench
 
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  int status = 1;
-  try {
-    status = regodem::bench::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    MPI_Abort(MPI_COMM_WORLD, 1);
-  }
-  MPI_Finalize();
-  return status;
-}
+int main(int argc, char** argv) { return regodem::bench::mpi_bench_main(argc, argv, regodem::bench::run); }

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "../paper_bed.hpp"
+#include "mpi_bench_main.hpp"
 #include "parallel/mpi/halo_exchange.hpp"
 
 namespace regodem::bench {
@@ -81,15 +82,4 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace regodem::bench
 
-int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
-  int status = 1;
-  try {
-    status = regodem::bench::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    MPI_Abort(MPI_COMM_WORLD, 1);
-  }
-  MPI_Finalize();
-  return status;
-}
+int main(int argc, char** argv) { return regodem::bench::mpi_bench_main(argc, argv, regodem::bench::run); }

@@ -56,6 +56,23 @@ def mpirun(ranks, *arguments):
     return subprocess.run(command, capture_output=True, text=True, env=env, timeout=TIMEOUT_S)
 
 
+def run_on_ranks(label, scenario, rank_counts, *arguments):
+    """Runs `scenario` on each rank count into WORK/<label><ranks>; returns the folders by rank count."""
+    outs = {}
+    for ranks in rank_counts:
+        out = WORK / f"{label}{ranks}"
+        result = mpirun(ranks, "run", str(scenario), "-o", str(out), "--overwrite", *arguments)
+        check(result.returncode == 0, f"{label} on {ranks} ranks: exit status {result.returncode}\n"
+                                      f"{result.stderr[-2000:]}")
+        outs[ranks] = out
+    return outs
+
+
+def last_value(out, column):
+    header, table = rows(out / "time_series.csv")
+    return float(table[-1][header.index(column)])
+
+
 def rows(path):
     with open(path, newline="") as f:
         table = list(csv.reader(f))
@@ -104,8 +121,7 @@ for ranks in (1, 2, 3):
     check(len(lines) == 1 and lines[0].startswith("regodem: completed 2 stages"),
           f"{ranks} ranks: stdout is {result.stdout!r} (one final line, from rank 0 alone)")
     runs[ranks] = out
-    _, table = rows(out / "time_series.csv")
-    header, _ = rows(out / "time_series.csv")
+    header, table = rows(out / "time_series.csv")
     column = header.index("energy_imbalance [-]")
     worst = max(abs(float(r[column])) for r in table)
     check(worst <= 1e-9, f"{ranks} ranks: the heat books are out by {worst:.3g} of the heat (more than 1e-9)")
@@ -114,29 +130,17 @@ for ranks in (2, 3):
 
 # Grains lost over the edge of a table are removed on the rank that held them, the same
 # grains on every rank count, and leave the books of every rank alike.
-spills = {}
-for ranks in (1, 2, 3):
-    out = WORK / f"spill{ranks}"
-    result = mpirun(ranks, "run", str(SCENARIOS / "over_ranks_spill.yaml"), "-o", str(out), "--overwrite")
-    check(result.returncode == 0, f"spill on {ranks} ranks: exit status {result.returncode}\n{result.stderr[-2000:]}")
-    spills[ranks] = out
-header, table = rows(spills[1] / "time_series.csv")
-lost = float(table[-1][header.index("particles_lost [-]")])
+spills = run_on_ranks("spill", SCENARIOS / "over_ranks_spill.yaml", (1, 2, 3))
+lost = last_value(spills[1], "particles_lost [-]")
 check(lost >= 100, f"the spill lost {lost:.0f} of its 160 grains, not most of them")
 for ranks in (2, 3):
     compare_runs(spills[1], spills[ranks], f"spill on {ranks} ranks against 1")
 # Sampled every step, every step follows a gather, where each rank still holds every
 # grain as its own when one leaves: it must still count once.
-for ranks in (1, 2):
-    out = WORK / f"spill_every_step{ranks}"
-    result = mpirun(ranks, "run", str(SCENARIOS / "over_ranks_spill.yaml"), "-o", str(out), "--overwrite",
-                    "--set", "output.interval=1e-9 s", "--set", "stages.pour.duration=0.2 s")
-    check(result.returncode == 0, f"spill sampled every step on {ranks} ranks: exit status {result.returncode}\n"
-                                  f"{result.stderr[-2000:]}")
-    spills[f"every{ranks}"] = out
-header, table = rows(spills["every1"] / "time_series.csv")
-check(float(table[-1][header.index("particles_lost [-]")]) >= 20, "the spill sampled every step lost too few grains")
-compare_runs(spills["every1"], spills["every2"], "spill sampled every step on 2 ranks against 1")
+every_step = run_on_ranks("spill_every_step", SCENARIOS / "over_ranks_spill.yaml", (1, 2),
+                          "--set", "output.interval=1e-9 s", "--set", "stages.pour.duration=0.2 s")
+check(last_value(every_step[1], "particles_lost [-]") >= 20, "the spill sampled every step lost too few grains")
+compare_runs(every_step[1], every_step[2], "spill sampled every step on 2 ranks against 1")
 
 # The tiny drilling model: bonds formed over the bed (many across the bricks), a turning
 # auger mesh, a lumped sieve, grains lost: the same bonds broken (bond_breaks.csv byte for
@@ -145,15 +149,10 @@ bed = WORK / "tiny_bed"
 result = subprocess.run([REGODEM, "run", str(REPOSITORY / "scenarios/paper/tiny/drill-bed.yaml"), "-o", str(bed),
                          "--overwrite", "--threads", "1"], capture_output=True, text=True, timeout=TIMEOUT_S)
 check(result.returncode == 0, f"the tiny bed: exit status {result.returncode}\n{result.stderr[-2000:]}")
-drills = {}
-for ranks in (1, 2, 3):
-    out = WORK / f"drill{ranks}"
-    result = mpirun(ranks, "run", str(REPOSITORY / "scenarios/paper/tiny/drill-sieve.yaml"), "-o", str(out),
-                    "--overwrite", "--set", f"initial_state.checkpoint={bed}", "--set", "output={interval: 0.01 s, snapshots: {every_steps: 400}}")
-    check(result.returncode == 0, f"drill on {ranks} ranks: exit status {result.returncode}\n{result.stderr[-2000:]}")
-    drills[ranks] = out
-header, table = rows(drills[1] / "time_series.csv")
-broken = float(table[-1][header.index("bonds_broken [-]")])
+drills = run_on_ranks("drill", REPOSITORY / "scenarios/paper/tiny/drill-sieve.yaml", (1, 2, 3),
+                      "--set", f"initial_state.checkpoint={bed}",
+                      "--set", "output={interval: 0.01 s, snapshots: {every_steps: 400}}")
+broken = last_value(drills[1], "bonds_broken [-]")
 check(broken >= 50, f"the drill broke {broken:.0f} bonds, too few to test their breaks over ranks")
 for ranks in (2, 3):
     compare_runs(drills[1], drills[ranks], f"drill on {ranks} ranks against 1")

@@ -68,7 +68,73 @@ void print_table(const RunEstimate& e, int threads) {
   fmt::print("{}\n", machine_line(threads));
 }
 
+/// The run projected onto MPI ranks (--ranks): per rank count, each stage's step on the
+/// slowest rank, by part, its gathers, and the total.
+void print_over_ranks(const RunEstimate& e, const EstimateOptions& options, int threads) {
+  if (options.ranks.empty()) return;
+  const CodeTraffic traffic = code_traffic();
+  fmt::print("\nover MPI ranks ({} thread{} each; network latency {:.3g} us, {:.3g} GB/s per rank; ghosts {} B per "
+             "step, a gather {} B per particle; see docs/estimate.md):\n",
+             threads, threads == 1 ? "" : "s", options.network.latency_s * 1e6,
+             options.network.bandwidth_bytes_per_s / 1e9, traffic.refresh_bytes_per_ghost,
+             traffic.gathered_bytes_per_particle);
+  fmt::print("{:>6} {:<16} {:>10} {:>9} {:>8} {:>10} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>16} {:>6}\n", "ranks", "stage",
+             "own/rank", "ghosts", "partners", "step", "compute", "halo", "builds", "collect.", "gathers", "each",
+             "predicted", "eff.");
+  for (std::size_t k = 0; k < options.ranks.size(); ++k) {
+    for (const StageCost& c : e.stages) {
+      if (k >= c.over_ranks.size()) continue;
+      const StageOverRanks& o = c.over_ranks[k];
+      const auto us = [](double s) { return fmt::format("{:.3g} us", s * 1e6); };
+      const auto short_wall = [](double s) { return s < 1.0 ? fmt::format("{:.3g} ms", s * 1e3) : format_wall_duration(s); };
+      if (c.static_bed)
+        fmt::print("{:>6} {:<16} {:>10} {:>9} {:>8} {:>10} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>16} {:>6}\n",
+                   options.ranks[k], c.name, "-", "-", "-", "-", "-", "-", "-", "-", "-", "-",
+                   fmt::format("{}{}", mark(c.basis), format_wall_duration(o.predicted_wall_s)), "(one)");
+      else
+        fmt::print("{:>6} {:<16} {:>10.0f} {:>9.0f} {:>8} {:>10} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>16} {:>6.2f}\n",
+                   options.ranks[k], c.name, o.step.own, o.step.ghosts, o.step.partners, us(o.step.step_s),
+                   us(o.step.compute_s), us(o.step.halo_s), us(o.step.build_s), us(o.step.collectives_s),
+                   fmt::format("<= {}", o.gathers), short_wall(o.gather_s),
+                   fmt::format("{}{}", mark(c.basis), format_wall_duration(o.predicted_wall_s)), o.step.efficiency);
+    }
+    const double wall_s = e.over_ranks_wall_s[k], gather_s = e.over_ranks_gather_s[k];
+    fmt::print("total on {} ranks: predicted wall time {}{} ({} of it in gathers), {:.2f}x one process{}\n",
+               options.ranks[k], e.upper_bound || e.assumed || gather_s > 0.0 ? "<= " : "",
+               format_wall_duration(wall_s), format_wall_duration(gather_s),
+               wall_s > 0.0 ? e.predicted_wall_s / wall_s : 0.0, e.complete ? "" : " (incomplete: a stage was not sampled)");
+  }
+  fmt::print("every rank holds every particle at a gather: each needs the memory of one process ({})\n",
+             megabytes(e.peak_resident_bytes));
+}
+
+nlohmann::json over_ranks_json(const StageCost& c, const EstimateCommandOptions& options) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t k = 0; k < c.over_ranks.size() && k < options.ranks.size(); ++k) {
+    const StageOverRanks& o = c.over_ranks[k];
+    rows.push_back({{"ranks", options.ranks[k]},
+                    {"own_particles", o.step.own},
+                    {"ghosts", o.step.ghosts},
+                    {"partners", o.step.partners},
+                    {"step_s", o.step.step_s},
+                    {"compute_s", o.step.compute_s},
+                    {"halo_s", o.step.halo_s},
+                    {"build_s", o.step.build_s},
+                    {"collectives_s", o.step.collectives_s},
+                    {"efficiency", o.step.efficiency},
+                    {"gathers_at_most", o.gathers},
+                    {"gather_s", o.gather_s},
+                    {"predicted_wall_s", o.predicted_wall_s}});
+  }
+  return rows;
+}
+
 nlohmann::json to_json(const RunEstimate& e, const EstimateCommandOptions& options, int threads) {
+  nlohmann::json over_ranks = nlohmann::json::array();
+  for (std::size_t k = 0; k < options.ranks.size() && k < e.over_ranks_wall_s.size(); ++k)
+    over_ranks.push_back({{"ranks", options.ranks[k]},
+                          {"predicted_wall_s", e.over_ranks_wall_s[k]},
+                          {"gather_wall_s", e.over_ranks_gather_s[k]}});
   nlohmann::json stages = nlohmann::json::array();
   for (const StageCost& c : e.stages)
     stages.push_back({{"name", c.name},
@@ -87,7 +153,9 @@ nlohmann::json to_json(const RunEstimate& e, const EstimateCommandOptions& optio
                       {"particle_steps_per_s", c.particle_steps_per_s},
                       {"setup_wall_s", c.setup_wall_s},
                       {"predicted_wall_s", c.predicted_wall_s},
-                      {"resident_bytes", c.resident_bytes}});
+                      {"resident_bytes", c.resident_bytes},
+                      {"builds_per_step", c.builds_per_step},
+                      {"over_ranks", over_ranks_json(c, options)}});
   return {{"scenario_file", options.scenario_path},
           {"overrides", options.overrides},
           {"solid_fraction", options.solid_fraction},
@@ -98,7 +166,9 @@ nlohmann::json to_json(const RunEstimate& e, const EstimateCommandOptions& optio
             {"peak_resident_bytes", e.peak_resident_bytes},
             {"upper_bound", e.upper_bound},
             {"assumed", e.assumed},
-            {"complete", e.complete}}},
+            {"complete", e.complete},
+            {"over_ranks", over_ranks}}},
+          {"network", {{"latency_s", options.latency_us * 1e-6}, {"bandwidth_bytes_per_s", options.bandwidth_GB_per_s * 1e9}}},
           {"machine",
            {{"cores", omp_get_num_procs()},
             {"threads", threads},
@@ -130,6 +200,17 @@ CLI::App* add_estimate_command(CLI::App& app, EstimateCommandOptions& options) {
   estimate->add_option("--sample-seconds", options.sample_seconds,
                        "Wall-clock cap of one stage's timed steps, in seconds (default 5)")
       ->check(CLI::PositiveNumber);
+  estimate->add_option("--ranks", options.ranks,
+                       "Also predict the run on N MPI ranks (each with --threads threads); repeatable, or N,M,...")
+      ->type_name("N")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1 << 20));
+  estimate->add_option("--latency-us", options.latency_us,
+                       "For --ranks: the network's latency per message or collective round, in us (default 2)")
+      ->check(CLI::PositiveNumber);
+  estimate->add_option("--bandwidth-gbps", options.bandwidth_GB_per_s,
+                       "For --ranks: the bandwidth of one rank, in GB/s (default 10)")
+      ->check(CLI::PositiveNumber);
   estimate->footer(
       "Each stage's particles are put in place at once, on a lattice at the solid fraction, and a few hundred of\n"
       "its steps (heat steps for a static bed) are timed; the prediction is steps x particles / rate. Stages that\n"
@@ -157,12 +238,16 @@ int estimate_scenario(const EstimateCommandOptions& options) {
   estimate_options.solid_fraction = options.solid_fraction;
   estimate_options.sample_steps = options.sample_steps;
   estimate_options.sample_seconds = options.sample_seconds;
+  estimate_options.ranks = options.ranks;
+  estimate_options.network.latency_s = options.latency_us * 1e-6;
+  estimate_options.network.bandwidth_bytes_per_s = options.bandwidth_GB_per_s * 1e9;
   const RunEstimate estimate =
       estimate_run(prepared->simulation(), prepared->plan(), estimate_options, [](const std::string& line) {
         fmt::print(stderr, "estimate: {}\n", line);
         std::fflush(stderr);
       });
   print_table(estimate, threads);
+  print_over_ranks(estimate, estimate_options, threads);
   if (!options.json_path.empty())
     write_file_atomically(options.json_path, to_json(estimate, options, threads).dump(2) + "\n");
   std::fflush(stdout);

@@ -120,6 +120,9 @@ struct EstimateCommandOptions {
   double solid_fraction = 0.6;         // of the geometric beds
   std::uint64_t sample_steps = 300;    // per stage
   double sample_seconds = 5.0;         // wall-clock cap of one stage's timed steps
+  std::vector<int> ranks;              // MPI rank counts to project the run onto
+  double latency_us = 2.0;             // of the network the ranks would share
+  double bandwidth_GB_per_s = 10.0;    // per rank
 };
 
 /// Each adds its subcommand (with its options bound to `options`) to `app`.

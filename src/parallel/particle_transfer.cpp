@@ -33,6 +33,15 @@ struct MessageReader {
 
 }  // namespace
 
+std::size_t bytes_per_particle(ParticleTransfer kind) {
+  ParticleStore none;
+  std::size_t bytes = 0;
+  none.for_each_described_field([&](const ParticleField& field, auto& values) {
+    if (carried(field, kind)) bytes += sizeof(typename std::remove_reference_t<decltype(values)>::value_type);
+  });
+  return bytes;
+}
+
 void pack_particles(ParticleStore& store, std::span<const std::uint32_t> indices, ParticleTransfer kind,
                     std::vector<std::byte>& bytes) {
   const std::uint64_t count = indices.size();

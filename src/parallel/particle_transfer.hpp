@@ -18,6 +18,9 @@ namespace regodem {
 /// run gathered on every rank between steps, its forces kept for the next step).
 enum class ParticleTransfer { migration, ghost, ghost_refresh, whole };
 
+/// The bytes one particle adds to a message of this kind (the fields it carries).
+std::size_t bytes_per_particle(ParticleTransfer kind);
+
 /// Appends to `bytes` the particles at `indices` of `store`: their count, then each
 /// field that `kind` carries, in the table's order, all the particles' values together.
 void pack_particles(ParticleStore& store, std::span<const std::uint32_t> indices, ParticleTransfer kind,

@@ -173,9 +173,11 @@ const char* end_name(const Stage& stage) {
 /// Times up to options.sample_steps calls of `step` after the warm-up; fills the
 /// sample fields of `cost`.
 template <class Step>
-void time_sample(StageCost& cost, std::size_t particles, const EstimateOptions& options, Step&& step) {
+void time_sample(StageCost& cost, std::size_t particles, const EstimateOptions& options, const NeighborList& lists,
+                 Step&& step) {
   for (std::uint64_t w = 0; w < options.warmup_steps; ++w) step();
   cost.resident_bytes = resident_set_bytes();
+  const std::uint64_t builds_before = lists.rebuild_count();
   const auto start = Clock::now();
   std::uint64_t done = 0;
   double elapsed = 0.0;
@@ -190,6 +192,7 @@ void time_sample(StageCost& cost, std::size_t particles, const EstimateOptions& 
   cost.sample_steps = done;
   cost.sample_wall_s = elapsed;
   cost.particle_steps_per_s = elapsed > 0.0 ? static_cast<double>(particles * done) / elapsed : 0.0;
+  cost.builds_per_step = static_cast<double>(lists.rebuild_count() - builds_before) / static_cast<double>(done);
 }
 
 /// Whether a wall's motion is under way at some time in [start_s, end_s).
@@ -243,6 +246,84 @@ double plan_end_s(const std::vector<StageCost>& costs, std::size_t s) {
   double end_s = 0.0;
   for (std::size_t k = 0; k <= s; ++k) end_s += costs[k].simulated_s;
   return end_s;
+}
+
+/// Events of a periodic schedule within a stage: by time, by steps, or by a wall's depth
+/// (counted for a stage that ends at a depth, from the surface down; elsewhere not known).
+std::uint64_t periodic_events(const SnapshotSchedule& schedule, const Stage& stage, const StageCost& cost) {
+  const auto per = [](double span, double interval) {
+    return interval > 0.0 ? static_cast<std::uint64_t>(std::ceil(span / interval)) : std::uint64_t{0};
+  };
+  switch (schedule.trigger) {
+    case SnapshotSchedule::Trigger::none: return 0;
+    case SnapshotSchedule::Trigger::time: return per(cost.simulated_s, schedule.interval_s);
+    case SnapshotSchedule::Trigger::steps:
+      return schedule.every_steps > 0 ? cost.steps / schedule.every_steps : 0;
+    case SnapshotSchedule::Trigger::depth:
+      return stage.ends_at_depth() ? per(stage.depth_m, schedule.depth_interval_m) : 0;
+  }
+  return 0;
+}
+
+/// How often a run over ranks gathers every particle on every rank in this stage, at
+/// most (StageRunner: wherever it reads or adds particles; events at one step share one).
+std::uint64_t planned_gathers(const Stage& stage, const StageCost& cost, const StagePlan& plan, std::size_t s,
+                              double start_s) {
+  if (stage.freezes_mechanics()) return 1;  // gathered for the whole stage
+  // The time series' samples, at the runner's default interval when none is given.
+  double sample_interval = plan.sample_interval_s > 0.0 ? plan.sample_interval_s
+                           : stage.until_settled         ? 0.01
+                                                         : cost.simulated_s / 100.0;
+  sample_interval = std::max(sample_interval, cost.step_s);
+  std::uint64_t gathers = 1 + static_cast<std::uint64_t>(std::ceil(cost.simulated_s / sample_interval));  // + the end
+  gathers += periodic_events(plan.snapshots, stage, cost);
+  for (const Measurement& m : plan.measurements.items) {
+    gathers += periodic_events(m.schedule.periodic, stage, cost);
+    for (const double t : m.schedule.at_times_s) gathers += t >= start_s && t < start_s + cost.simulated_s ? 1 : 0;
+    gathers += m.schedule.at_depths_m.size();
+  }
+  for (const Insertion& ins : plan.insertions)
+    if (ins.stage == s)
+      gathers += ins.rate_per_s > 0.0 && ins.interval_s > 0.0
+                     ? static_cast<std::uint64_t>(std::ceil(cost.simulated_s / ins.interval_s))
+                     : 1;
+  if (stage.ends_on_measurement()) gathers += cost.steps / 64;  // the target checked every 64 steps
+  if (stage.form_bonds) ++gathers;
+  return gathers;
+}
+
+/// The stage's sampled bed cut over each of options.ranks, and its cost there.
+void project_over_ranks(StageCost& cost, const Simulation& sim, const StagePlan& plan, std::size_t s, double start_s,
+                        const EstimateOptions& options) {
+  if (!cost.sampled || cost.particle_steps_per_s <= 0.0) return;
+  const Stage& stage = plan.stages[s];
+  const CodeTraffic traffic = code_traffic();
+  OneProcessStep one;
+  one.particles = static_cast<double>(cost.particles);
+  one.step_s = one.particles / cost.particle_steps_per_s;
+  one.builds_per_step = cost.builds_per_step;
+  double largest_radius_m = sim.settings().max_particle_radius_m;
+  for (const double r : sim.particles.radius_m) largest_radius_m = std::max(largest_radius_m, r);
+  const Domain& domain = sim.settings().domain;
+  const std::vector<double> work = sim.particle_work();
+  const std::uint64_t gathers = planned_gathers(stage, cost, plan, s, start_s);
+  for (const int ranks : options.ranks) {
+    StageOverRanks over;
+    over.gathers = gathers;
+    if (stage.freezes_mechanics()) {  // a static bed is stepped gathered, as one process
+      over.step.ranks = ranks;
+      over.step.efficiency = 1.0 / ranks;
+      over.predicted_wall_s = cost.predicted_wall_s;
+    } else {
+      const RankShares shares = cut_into_bricks(Brick{domain.min_m, domain.max_m}, sim.particles.position_m, work,
+                                                sim.ghost_reach_m(largest_radius_m), ranks);
+      over.step = project_step(shares, one, options.network, traffic);
+      over.gather_s = project_gather_s(one.particles, ranks, one.step_s, options.network, traffic);
+      over.predicted_wall_s =
+          static_cast<double>(cost.steps) * over.step.step_s + static_cast<double>(gathers) * over.gather_s;
+    }
+    cost.over_ranks.push_back(over);
+  }
 }
 
 }  // namespace
@@ -352,11 +433,11 @@ RunEstimate estimate_run(Simulation& sim, const StagePlan& plan, const EstimateO
         }
         say(fmt::format("{}: static bed, heat step {:.4g} s, timing up to {} heat steps on {} particles", who,
                         cost.step_s, options.sample_steps, n));
-        time_sample(cost, n, options, [&] { stepper.advance(stepper.time_step_s()); });
+        time_sample(cost, n, options, sim.neighbor_list(), [&] { stepper.advance(stepper.time_step_s()); });
       } else if (!walls_move_during(sim, plan_end_s(estimate.stages, s) - cost.simulated_s,
                                     plan_end_s(estimate.stages, s))) {
         say(fmt::format("{}: timing up to {} steps on {} particles", who, options.sample_steps, n));
-        time_sample(cost, n, options, [&] { sim.step(); });
+        time_sample(cost, n, options, sim.neighbor_list(), [&] { sim.step(); });
       } else {
         // Walls move in this stage (a drill feeds): a step costs more once it is in the
         // bed, so the stage is timed in the middle of each third, the walls where they
@@ -376,8 +457,9 @@ RunEstimate estimate_run(Simulation& sim, const StagePlan& plan, const EstimateO
           }
           say(fmt::format("{}: moving walls at t = {:.4g} s, timing up to {} steps on {} particles", who, at_s,
                           third.sample_steps, sim.particles.size()));
-          time_sample(part, sim.particles.size(), third, [&] { sim.step(); });
+          time_sample(part, sim.particles.size(), third, sim.neighbor_list(), [&] { sim.step(); });
           seconds_per_particle_step += 1.0 / part.particle_steps_per_s / 3.0;
+          cost.builds_per_step += part.builds_per_step / 3.0;
           resident = std::max(resident, part.resident_bytes);
           cost.sample_steps += part.sample_steps;
           cost.sample_wall_s += part.sample_wall_s;
@@ -400,12 +482,21 @@ RunEstimate estimate_run(Simulation& sim, const StagePlan& plan, const EstimateO
                       "max overlap {:.2g} of a diameter, {} neighbour-list builds so far",
                       who, cost.sample_steps, cost.sample_wall_s, cost.particle_steps_per_s, per_particle,
                       sim.max_overlap_fraction(), sim.neighbor_list().rebuild_count()));
+      if (!options.ranks.empty())
+        project_over_ranks(cost, sim, plan, s, plan_end_s(estimate.stages, s) - cost.simulated_s, options);
     } catch (const std::exception& e) {  // a blow-up, a bond or heat step the bed refuses
       cost.note = fmt::format("sample failed: {}", e.what());
       say(fmt::format("{}: {}", who, cost.note));
       broken = true;
     }
   }
+  estimate.over_ranks_wall_s.assign(options.ranks.size(), 0.0);
+  estimate.over_ranks_gather_s.assign(options.ranks.size(), 0.0);
+  for (const StageCost& cost : estimate.stages)
+    for (std::size_t k = 0; k < cost.over_ranks.size(); ++k) {
+      estimate.over_ranks_wall_s[k] += cost.over_ranks[k].predicted_wall_s;
+      estimate.over_ranks_gather_s[k] += static_cast<double>(cost.over_ranks[k].gathers) * cost.over_ranks[k].gather_s;
+    }
   for (const StageCost& cost : estimate.stages) {
     estimate.steps += cost.steps;
     estimate.predicted_wall_s += cost.predicted_wall_s;

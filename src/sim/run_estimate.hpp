@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "parallel/rank_cost_model.hpp"
 #include "sim/stage_plan.hpp"
 
 namespace regodem {
@@ -25,6 +26,18 @@ struct EstimateOptions {
   // A stage that ends on settling or on a measurement with no max_duration has no
   // bound: it is counted as max(min_duration, this), and marked assumed.
   double unbounded_duration_s = 0.1;
+  // Rank counts to project the run onto (`--ranks`), over this network; each rank with
+  // the threads of the sample.
+  std::vector<int> ranks;
+  NetworkModel network;
+};
+
+/// A stage on N ranks (src/parallel/rank_cost_model.hpp).
+struct StageOverRanks {
+  RankStepCost step;              // one mechanical step, on the slowest rank
+  std::uint64_t gathers = 0;      // at most: samples, measurements, snapshots, insertion attempts, checks
+  double gather_s = 0.0;          // each
+  double predicted_wall_s = 0.0;  // steps x step + gathers x gather (+ the static bed's setup)
 };
 
 /// How sure a stage's number of steps is.
@@ -55,6 +68,8 @@ struct StageCost {
   double setup_wall_s = 0.0;         // once per stage: a static bed's conduction network and solver
   double resident_bytes = 0.0;       // resident set once the stage's sample state is built
   double predicted_wall_s = 0.0;     // setup + steps x particles / rate
+  double builds_per_step = 0.0;      // neighbour-list builds in the timed steps, per step
+  std::vector<StageOverRanks> over_ranks;  // one per EstimateOptions::ranks, when sampled
 };
 
 struct RunEstimate {
@@ -65,6 +80,8 @@ struct RunEstimate {
   bool upper_bound = false;  // some stage counted its max_duration
   bool assumed = false;      // some stage had no bound at all
   bool complete = true;      // every stage was sampled
+  // Per EstimateOptions::ranks: the whole run's predicted wall time, and of it the gathers'.
+  std::vector<double> over_ranks_wall_s, over_ranks_gather_s;
 };
 
 /// What the plan says without running: particles, step and steps of each stage. A

@@ -229,12 +229,15 @@ class Simulation {
   /// process. Adding or removing particles and setting a velocity between steps are not
   /// yet over ranks (InputError). The walls' forces, torques, power and heat and the contact totals of each
   /// pass are summed over the ranks (in rank order: within round-off of one process's).
-  /// Not yet under MPI (InputError): bonds. The fastest impact
+  /// Bonds travel with their ends (a bond across two ranks is held by both). The fastest impact
   /// is each rank's until gather_everywhere() merges them; a run adds particles, books
   /// the ledgers' reference energies and measures while gathered.
   void distribute(ParticleHalo* halo);
   /// The particles this simulation steps (all of them in one process).
   std::size_t own_particle_count() const;
+  /// Each particle's work in a step, for cutting the domain over ranks: 1 for itself and
+  /// 1 for each neighbour-list entry it is in, as owner or as partner.
+  std::vector<double> particle_work() const;
   /// Whether the particle at index i is another rank's (a ghost).
   bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
   /// How far from its brick a rank needs the other ranks' particles, for particles no

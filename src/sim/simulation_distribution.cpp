@@ -124,6 +124,16 @@ void Simulation::refuse_under_ranks(const char* what) const {
   if (halo_) throw InputError(fmt::format("{} is not yet supported in a run over MPI ranks", what));
 }
 
+std::vector<double> Simulation::particle_work() const {
+  const NeighborList& nl = neighbors_;
+  const bool listed = nl.offset.size() == particles.size() + 1 && nl.owner_offset.size() == particles.size() + 1;
+  std::vector<double> work(particles.size(), 1.0);
+  if (listed)
+    for (std::size_t i = 0; i < particles.size(); ++i)
+      work[i] += (nl.offset[i + 1] - nl.offset[i]) + (nl.owner_offset[i + 1] - nl.owner_offset[i]);
+  return work;
+}
+
 std::size_t Simulation::own_particle_count() const {
   return particles.size() - static_cast<std::size_t>(std::count(ghost_.begin(), ghost_.end(), std::uint8_t{1}));
 }
@@ -155,15 +165,11 @@ void Simulation::redistribute_particles() {
   // process; the books are the run's on every rank), summed in rank order.
   if (settings_.lost_particles == LostParticles::remove) drop_lost_over_ranks();
   ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
-  // Each own particle's work: its list entries as owner and as partner, and itself.
-  const NeighborList& nl = neighbors_;
-  const bool listed = nl.offset.size() == particles.size() + 1 && nl.owner_offset.size() == particles.size() + 1;
-  std::vector<double> work;
+  const std::vector<double> every_work = particle_work();
+  std::vector<double> work;  // the own particles'
   work.reserve(particles.size());
   for (std::size_t i = 0; i < particles.size(); ++i)
-    if (!ghost_[i])
-      work.push_back(listed ? 1.0 + (nl.offset[i + 1] - nl.offset[i]) + (nl.owner_offset[i + 1] - nl.owner_offset[i])
-                            : 1.0);
+    if (!ghost_[i]) work.push_back(every_work[i]);
   particles.remove_if(std::vector<char>(ghost_.begin(), ghost_.end()));
   halo_->redistribute(particles, history, work, ghost_, bonds_);
   if (ghost_.size() != particles.size() || history.owners() != particles.size())

@@ -21,6 +21,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "parallel/mpi/halo_exchange.hpp"
+#include "parallel/rank_cost_model.hpp"
 
 namespace regodem {
 namespace {
@@ -254,6 +255,53 @@ TEST(DistributedStep, ChangesToOneRanksParticlesBetweenStepsAreRefused) {
     EXPECT_THROW(sim.set_particle_velocity(own, {}, {}), InputError);
   }
   sim.advance(1);  // and the ranks go on together
+}
+
+// The traffic the cost model of a run over many ranks counts on (code_traffic(),
+// src/parallel/rank_cost_model.hpp) is what a step sends: the collectives and exchanges of
+// a step without a build and of one with a build, and the bytes of the ghosts' refresh.
+TEST(DistributedStep, AStepSendsWhatTheCostModelCounts) {
+  SphereMaterial m;
+  SplitRun split(falling_cup(m), 1000, 1);  // the first step after the split builds
+  Simulation& sim = split.sim;
+  const CodeTraffic model = code_traffic();
+  const Communicator& comm = split.comm;
+  std::uint64_t plain_steps = 0, build_steps = 0;
+  for (int s = 0; s < 300; ++s) {
+    const CommunicationTally before = comm.tally();
+    const std::uint64_t builds_before = sim.neighbor_list().rebuild_count();
+    const std::uint64_t rebalances_before = split.halo->rebalance_count();
+    sim.step();
+    // A rebalance (rare: the model leaves it out) gathers every rank's points and work.
+    const std::uint64_t rebalance_collectives = split.halo->rebalance_count() != rebalances_before ? 2 : 0;
+    const CommunicationTally after = comm.tally();
+    const bool built = sim.neighbor_list().rebuild_count() != builds_before;
+    const std::uint64_t collectives = after.collectives - before.collectives;
+    const std::uint64_t exchanges = after.exchanges - before.exchanges;
+    // Every rank's refresh bytes: a count, then each ghost's fields, per message.
+    const std::uint64_t bytes = comm.sum(after.exchange_bytes - before.exchange_bytes);
+    const std::uint64_t messages = comm.sum(after.exchange_messages - before.exchange_messages);
+    const std::uint64_t ghosts = comm.sum(split.halo->ghost_count());
+    // The sums just taken are the test's, not the step's: `after` was read before them.
+    if (built) {
+      ++build_steps;
+      if (comm.size() == 1) continue;  // one rank skips the cut's agreements; the model is for more
+      EXPECT_EQ(collectives - rebalance_collectives,
+                std::uint64_t(model.collectives_per_step + model.collectives_per_build))
+          << "step " << s;
+      EXPECT_EQ(exchanges, std::uint64_t(model.exchanges_per_build)) << "step " << s;
+    } else {
+      ++plain_steps;
+      EXPECT_EQ(collectives, std::uint64_t(model.collectives_per_step)) << "step " << s;
+      EXPECT_EQ(exchanges, std::uint64_t(model.exchanges_per_step)) << "step " << s;
+      EXPECT_EQ(bytes, messages * sizeof(std::uint64_t) + ghosts * model.refresh_bytes_per_ghost) << "step " << s;
+    }
+  }
+  EXPECT_GT(plain_steps, 100u);
+  EXPECT_GT(build_steps, 2u) << "no neighbour build in 300 steps: the build's counts were not checked";
+  if (comm.size() > 1) {
+    EXPECT_GT(comm.sum(split.halo->ghost_count()), 0u) << "no ghosts: the bytes were not checked";
+  }
 }
 
 }  // namespace

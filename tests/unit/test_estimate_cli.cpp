@@ -45,6 +45,38 @@ TEST(EstimateCli, DemoPrintsATotalAndWritesJson) {
   EXPECT_EQ(json["machine"]["threads"], 1);
 }
 
+// --ranks projects the run onto MPI ranks (src/parallel/rank_cost_model.hpp): one rank is
+// the one process's prediction; two share the bed across one cut, each with the other's
+// nearest grains as ghosts; the static bed is stepped gathered, as one process.
+TEST(EstimateCli, RanksProjectTheRunOntoBricks) {
+  const fs::path dir = fresh_directory("ranks");
+  const Finished done = run_regodem({"estimate", kDemo, "--threads", "1", "--sample-steps", "20", "--sample-seconds",
+                                     "1", "--ranks", "1,2", "--json", "r.json"},
+                                    dir);
+  ASSERT_EQ(done.exit_code, 0) << done.output;
+  EXPECT_NE(done.output.find("total on 2 ranks: "), std::string::npos) << done.output;
+  const nlohmann::json json = nlohmann::json::parse(read_file(dir / "r.json"));
+  const nlohmann::json& fill = json["stages"][0];
+  ASSERT_EQ(fill["over_ranks"].size(), 2u);
+  const nlohmann::json& one = fill["over_ranks"][0];
+  const nlohmann::json& two = fill["over_ranks"][1];
+  EXPECT_EQ(one["ranks"], 1);
+  EXPECT_NEAR(one["predicted_wall_s"].get<double>(), fill["predicted_wall_s"].get<double>(),
+              1e-12 * fill["predicted_wall_s"].get<double>());
+  EXPECT_EQ(one["ghosts"].get<double>(), 0.0);
+  EXPECT_EQ(two["partners"], 1);
+  EXPECT_GT(two["ghosts"].get<double>(), 0.0);
+  EXPECT_NEAR(two["own_particles"].get<double>(), 780.0, 0.1 * 780.0);  // half the 1,560
+  EXPECT_GT(two["efficiency"].get<double>(), 0.0);
+  EXPECT_LT(two["efficiency"].get<double>(), 1.0);
+  // The 25 samples (every 0.01 s of the 0.25 s fill), the end, and the two pours' attempts.
+  EXPECT_GT(two["gathers_at_most"].get<int>(), 26);
+  const nlohmann::json& heat = json["stages"][2];
+  EXPECT_EQ(heat["over_ranks"][1]["predicted_wall_s"].get<double>(), heat["predicted_wall_s"].get<double>());
+  ASSERT_EQ(json["total"]["over_ranks"].size(), 2u);
+  EXPECT_EQ(json["network"]["latency_s"].get<double>(), 2e-6);
+}
+
 // The drill feeds during its stage: it is timed at three times, in the bed, with the
 // grains in its way taken out.
 TEST(EstimateCli, DrillStageIsTimedWithTheDrillInTheBed) {

@@ -10,6 +10,23 @@
 
 namespace regodem {
 
+namespace {
+
+/// Adds the wall time of its scope to a tally's seconds.
+class TimedIn {
+ public:
+  explicit TimedIn(CommunicationTally& tally) : tally_(tally), start_s_(MPI_Wtime()) {}
+  ~TimedIn() { tally_.seconds += MPI_Wtime() - start_s_; }
+  TimedIn(const TimedIn&) = delete;
+  TimedIn& operator=(const TimedIn&) = delete;
+
+ private:
+  CommunicationTally& tally_;
+  double start_s_;
+};
+
+}  // namespace
+
 Communicator::Communicator(MPI_Comm comm) : comm_(comm) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
@@ -25,6 +42,7 @@ std::vector<std::vector<std::byte>> Communicator::exchange(const std::vector<std
       throw SimulationError(fmt::format("a message of {} bytes between ranks is larger than MPI's int counts", bytes));
     return static_cast<int>(bytes);
   };
+  const TimedIn timed(tally_);
   std::vector<int> send_counts(ranks), send_offsets(ranks), receive_counts(ranks), receive_offsets(ranks);
   std::size_t send_total = 0;
   for (std::size_t r = 0; r < ranks; ++r) {
@@ -45,6 +63,9 @@ std::vector<std::vector<std::byte>> Communicator::exchange(const std::vector<std
   MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, receive.data(), receive_counts.data(),
                 receive_offsets.data(), MPI_BYTE, comm_);
   std::vector<std::vector<std::byte>> from_rank(ranks);
+  ++tally_.exchanges;
+  tally_.exchange_bytes += send_total;
+  for (std::size_t r = 0; r < ranks; ++r) tally_.exchange_messages += send_counts[r] > 0 ? 1 : 0;
   for (std::size_t r = 0; r < ranks; ++r)
     from_rank[r].assign(receive.begin() + receive_offsets[r],
                         receive.begin() + receive_offsets[r] + receive_counts[r]);
@@ -52,6 +73,8 @@ std::vector<std::vector<std::byte>> Communicator::exchange(const std::vector<std
 }
 
 std::uint64_t Communicator::sum(std::uint64_t value) const {
+  const TimedIn timed(tally_);
+  ++tally_.collectives;
   std::uint64_t total = 0;
   MPI_Allreduce(&value, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
   return total;
@@ -60,6 +83,9 @@ std::uint64_t Communicator::sum(std::uint64_t value) const {
 std::vector<std::vector<std::byte>> Communicator::gather_to_all(const std::vector<std::byte>& mine) const {
   if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw SimulationError(fmt::format("a message of {} bytes between ranks is larger than MPI's int counts", mine.size()));
+  const TimedIn timed(tally_);
+  tally_.collectives += 2;
+  tally_.gathered_bytes += mine.size();
   const int count = static_cast<int>(mine.size());
   const auto ranks = static_cast<std::size_t>(size_);
   std::vector<int> counts(ranks), offsets(ranks);
@@ -80,11 +106,15 @@ std::vector<std::vector<std::byte>> Communicator::gather_to_all(const std::vecto
 }
 
 std::uint32_t Communicator::bits_or(std::uint32_t value) const {
+  const TimedIn timed(tally_);
+  ++tally_.collectives;
   MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_UINT32_T, MPI_BOR, comm_);
   return value;
 }
 
 double Communicator::max(double value) const {
+  const TimedIn timed(tally_);
+  ++tally_.collectives;
   double largest = 0.0;
   MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, comm_);
   return largest;
@@ -93,6 +123,9 @@ double Communicator::max(double value) const {
 std::vector<std::vector<std::byte>> Communicator::gather(const std::vector<std::byte>& mine, int root) const {
   if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw SimulationError(fmt::format("a message of {} bytes between ranks is larger than MPI's int counts", mine.size()));
+  const TimedIn timed(tally_);
+  tally_.collectives += 2;
+  tally_.gathered_bytes += mine.size();
   const int count = static_cast<int>(mine.size());
   const auto ranks = static_cast<std::size_t>(size_);
   std::vector<int> counts(rank_ == root ? ranks : 0), offsets(counts.size());
@@ -113,6 +146,8 @@ std::vector<std::vector<std::byte>> Communicator::gather(const std::vector<std::
 }
 
 double Communicator::broadcast(double value, int root) const {
+  const TimedIn timed(tally_);
+  ++tally_.collectives;
   MPI_Bcast(&value, 1, MPI_DOUBLE, root, comm_);
   return value;
 }
@@ -146,6 +181,8 @@ ErrorKind describe(const std::exception_ptr& error, std::string& message) {
 void Communicator::agree(const std::exception_ptr& error) const { any_rank(false, error); }
 
 bool Communicator::any_rank(bool mine, const std::exception_ptr& error) const {
+  const TimedIn timed(tally_);
+  ++tally_.collectives;
   std::string message;
   const ErrorKind kind = describe(error, message);
   // One collective for both: the lowest failing rank and, negated, the largest vote.
@@ -167,6 +204,8 @@ void Communicator::sum_in_rank_order(std::span<double> values) const {
   if (values.size() > static_cast<std::size_t>(std::numeric_limits<int>::max() / std::max(size_, 1)))
     throw SimulationError(fmt::format("{} values to sum over {} ranks are more than MPI's int counts", values.size(),
                                       size_));
+  const TimedIn timed(tally_);
+  tally_.collectives += 2;
   const int count = static_cast<int>(values.size());
   std::vector<double> all(rank_ == 0 ? values.size() * static_cast<std::size_t>(size_) : 0);
   MPI_Gather(values.data(), count, MPI_DOUBLE, all.data(), count, MPI_DOUBLE, 0, comm_);

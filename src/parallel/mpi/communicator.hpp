@@ -13,6 +13,17 @@
 
 namespace regodem {
 
+/// What a rank has sent since its Communicator was made: the counts a cost model of a run
+/// over many ranks needs (src/parallel/rank_cost_model.hpp), measured rather than assumed.
+struct CommunicationTally {
+  std::uint64_t collectives = 0;        // latency-bound rounds among all ranks (an allreduce, a broadcast, ...)
+  std::uint64_t exchanges = 0;          // exchange(): an all-to-all of counts, then the messages
+  std::uint64_t exchange_messages = 0;  // of which messages with bytes in them, sent by this rank
+  std::uint64_t exchange_bytes = 0;     // and their bytes
+  std::uint64_t gathered_bytes = 0;     // this rank's bytes handed to gather / gather_to_all
+  double seconds = 0.0;                 // wall time inside the calls above (waiting for other ranks included)
+};
+
 class Communicator {
  public:
   explicit Communicator(MPI_Comm comm = MPI_COMM_WORLD);
@@ -45,8 +56,12 @@ class Communicator {
   /// Whether any rank's `mine` is true, and agree(error), in one collective.
   bool any_rank(bool mine, const std::exception_ptr& error) const;
 
+  /// What this rank has sent through this communicator so far.
+  const CommunicationTally& tally() const { return tally_; }
+
  private:
   MPI_Comm comm_;
+  mutable CommunicationTally tally_;
   int rank_ = 0, size_ = 1;
 };
 

@@ -1,0 +1,130 @@
+#include "parallel/rank_cost_model.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "parallel/particle_transfer.hpp"
+
+namespace regodem {
+
+CodeTraffic code_traffic() {
+  CodeTraffic t;
+  // Simulation::step over ranks: the vote on a rebuild (any_rank), the wall and heat
+  // totals summed in rank order (a gather and a broadcast), the end-of-step agreement.
+  t.collectives_per_step = 4;
+  t.exchanges_per_step = 1;  // HaloExchange::refresh_ghosts
+  // A build (Simulation::rebuild_neighbors, HaloExchange::redistribute), instead of the
+  // refresh: the busiest rank's work, the particle count, the agreements that no particle
+  // left the domain and no bond outreaches the ghosts (with lost particles removed, their
+  // books gathered besides); the migrants sent, then the new ghosts.
+  t.collectives_per_build = 5;
+  t.exchanges_per_build = 2;
+  t.refresh_bytes_per_ghost = bytes_per_particle(ParticleTransfer::ghost_refresh);
+  t.new_ghost_bytes = bytes_per_particle(ParticleTransfer::ghost);
+  t.gathered_bytes_per_particle = bytes_per_particle(ParticleTransfer::whole);
+  return t;
+}
+
+int collective_rounds(int ranks) {
+  int rounds = 0;
+  for (int reach = 1; reach < ranks; reach *= 2) ++rounds;
+  return rounds;
+}
+
+RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, std::span<const double> weights,
+                           double reach_m, int ranks) {
+  if (ranks < 1) throw InputError(fmt::format("{} ranks: at least one", ranks));
+  if (!weights.empty() && weights.size() != points.size())
+    throw InputError(fmt::format("{} weights for {} points", weights.size(), points.size()));
+  const RecursiveBisection bricks(domain, points, weights, ranks);
+  const auto n = static_cast<std::size_t>(ranks);
+  RankShares shares;
+  shares.ranks = ranks;
+  shares.own.assign(n, 0);
+  shares.ghosts.assign(n, 0);
+  shares.own_work.assign(n, 0.0);
+  shares.ghost_work.assign(n, 0.0);
+  shares.partners.assign(n, 0);
+  std::vector<char> hears_from(n * n, 0);  // [receiver * n + sender]
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const double w = weights.empty() ? 1.0 : weights[p];
+    const auto owner = static_cast<std::size_t>(bricks.rank_of(points[p]));
+    ++shares.own[owner];
+    shares.own_work[owner] += w;
+    shares.total_work += w;
+    for (std::size_t r = 0; r < n; ++r) {
+      if (r == owner || bricks.brick(static_cast<int>(r)).distance_m(points[p]) > reach_m) continue;
+      ++shares.ghosts[r];
+      shares.ghost_work[r] += w;
+      hears_from[r * n + owner] = 1;
+    }
+  }
+  for (std::size_t r = 0; r < n; ++r)
+    shares.partners[r] = static_cast<int>(std::count(hears_from.begin() + static_cast<std::ptrdiff_t>(r * n),
+                                                     hears_from.begin() + static_cast<std::ptrdiff_t>((r + 1) * n), 1));
+  return shares;
+}
+
+RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, const NetworkModel& network,
+                          const CodeTraffic& traffic) {
+  RankStepCost cost;
+  cost.ranks = shares.ranks;
+  if (shares.total_work <= 0.0 || one.particles <= 0.0) return cost;
+  std::size_t counted = 0;
+  for (const std::size_t own : shares.own) counted += own;
+  const double scale = one.particles / static_cast<double>(counted);  // the cut's sample to the run's count
+  const int rounds = collective_rounds(shares.ranks);
+  const double alpha = network.latency_s, beta = network.bandwidth_bytes_per_s;
+  cost.collectives_s = traffic.collectives_per_step * rounds * alpha;
+  double slowest_s = -1.0;
+  for (std::size_t r = 0; r < shares.own.size(); ++r) {
+    if (shares.ranks == 1) break;
+    const double ghosts = scale * static_cast<double>(shares.ghosts[r]);
+    // Ghosts cost as own particles: their pairs with own particles and with each other are listed.
+    const double compute_s = one.step_s * (shares.own_work[r] + shares.ghost_work[r]) / shares.total_work;
+    // An exchange: the all-to-all of counts (rounds x latency, 4 bytes per rank per
+    // round), then one message from each partner.
+    const double exchange_latency_s =
+        (rounds + shares.partners[r]) * alpha + 4.0 * shares.ranks * rounds / beta;
+    const double halo_s =
+        traffic.exchanges_per_step * (exchange_latency_s + ghosts * static_cast<double>(traffic.refresh_bytes_per_ghost) / beta);
+    // A build's messages in place of a refresh (the migrants, few between two builds, not counted).
+    const double build_s =
+        one.builds_per_step *
+        ((traffic.exchanges_per_build - traffic.exchanges_per_step) * exchange_latency_s +
+         ghosts * static_cast<double>(traffic.new_ghost_bytes - traffic.refresh_bytes_per_ghost) / beta +
+         traffic.collectives_per_build * rounds * alpha);
+    const double total_s = compute_s + halo_s + build_s;
+    if (total_s > slowest_s) {
+      slowest_s = total_s;
+      cost.slowest_rank = static_cast<int>(r);
+      cost.own = scale * static_cast<double>(shares.own[r]);
+      cost.ghosts = ghosts;
+      cost.partners = shares.partners[r];
+      cost.compute_s = compute_s;
+      cost.halo_s = halo_s;
+      cost.build_s = build_s;
+    }
+  }
+  if (shares.ranks == 1) {
+    cost.own = one.particles;
+    cost.compute_s = one.step_s;
+    cost.collectives_s = 0.0;
+  }
+  cost.step_s = cost.compute_s + cost.halo_s + cost.build_s + cost.collectives_s;
+  cost.efficiency = cost.step_s > 0.0 ? one.step_s / (shares.ranks * cost.step_s) : 1.0;
+  return cost;
+}
+
+double project_gather_s(double particles, int ranks, double one_process_step_s, const NetworkModel& network,
+                        const CodeTraffic& traffic) {
+  if (ranks <= 1) return 0.0;
+  return collective_rounds(ranks) * network.latency_s +
+         particles * static_cast<double>(traffic.gathered_bytes_per_particle) / network.bandwidth_bytes_per_s +
+         one_process_step_s;
+}
+
+}  // namespace regodem

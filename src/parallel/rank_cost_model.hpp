@@ -1,0 +1,91 @@
+#pragma once
+// What a step would cost on N ranks (issue 19; `regodem estimate --ranks N`, the weak-
+// scaling projection of docs/benchmarks.md), from what one process measured and from
+// what the code sends. The bed is cut as a run cuts it (RecursiveBisection, weighted by
+// work); each brick's own particles and ghosts (the other bricks' particles within the
+// ghost reach, as HaloExchange sends them) give its compute; its ghosts' bytes and the
+// ranks it hears from give its messages; the collectives every step takes give the
+// latency that grows with log2 N. A step lasts as long as its slowest rank, since every
+// step ends in a collective.
+//
+// The network is the latency-bandwidth (Hockney) model: a message or one round of a
+// collective waits `latency_s`, and a rank moves bytes at `bandwidth_bytes_per_s`. A
+// collective over N ranks takes ceil(log2 N) rounds (recursive doubling, tree
+// reduce/broadcast).
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "core/vec3.hpp"
+#include "parallel/recursive_bisection.hpp"
+
+namespace regodem {
+
+struct NetworkModel {
+  double latency_s = 2e-6;                // a cluster's InfiniBand, MPI point to point
+  double bandwidth_bytes_per_s = 1.0e10;  // per rank
+};
+
+/// What the code sends besides the ghosts' bytes, per step and per neighbour-list build
+/// (tests/mpi/test_communication_counts.cpp holds the run's Communicator tally to these).
+struct CodeTraffic {
+  int collectives_per_step = 0;   // latency-bound rounds over all ranks (agreements, sums)
+  int exchanges_per_step = 0;     // ghost refreshes: an all-to-all of counts, then one message per partner
+  int collectives_per_build = 0;  // besides a step's
+  int exchanges_per_build = 0;    // migration and the new ghosts, in place of the step's refresh
+  std::size_t refresh_bytes_per_ghost = 0;  // positions, velocities, spins, temperatures
+  std::size_t new_ghost_bytes = 0;          // a ghost sent at a build
+  std::size_t gathered_bytes_per_particle = 0;  // a particle handed to every rank at a gather
+};
+/// The traffic of this build of RegoDEM.
+CodeTraffic code_traffic();
+
+/// The bed cut into `ranks` bricks: what each rank holds.
+struct RankShares {
+  int ranks = 1;
+  double total_work = 0.0;
+  std::vector<std::size_t> own, ghosts;    // particles, by rank
+  std::vector<double> own_work, ghost_work;
+  std::vector<int> partners;               // the ranks whose particles it holds as ghosts
+};
+
+/// Cuts `domain` over `points` weighted by `weights` (empty: 1 each) as a run does, and
+/// counts each rank's own particles and ghosts (another brick's particles within
+/// `reach_m` of its brick).
+RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, std::span<const double> weights,
+                           double reach_m, int ranks);
+
+/// What one process measured of the stepping to project.
+struct OneProcessStep {
+  double particles = 0.0;    // of the run (the cut's counts are scaled to it)
+  double step_s = 0.0;       // wall time of one step of all of them in one process
+  double builds_per_step = 0.0;
+};
+
+/// One step on N ranks, per part, on the rank that takes longest.
+struct RankStepCost {
+  int ranks = 1;
+  int slowest_rank = 0;
+  double own = 0.0, ghosts = 0.0;  // the slowest rank's (scaled to the run's particles)
+  int partners = 0;
+  double compute_s = 0.0;      // its own particles and ghosts at one process's cost per particle
+  double halo_s = 0.0;         // its ghost refreshes
+  double build_s = 0.0;        // its share of the neighbour builds' messages, per step
+  double collectives_s = 0.0;  // every rank's
+  double step_s = 0.0;         // the step, as long as the slowest rank's
+  double efficiency = 1.0;     // one process's step / (ranks x step_s)
+};
+
+RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, const NetworkModel& network,
+                          const CodeTraffic& traffic);
+
+/// A gather (every rank given every particle, where a run reads or adds particles:
+/// samples, measurements, snapshots, insertions): the all-gather of `particles`, then
+/// every rank's lists rebuilt over all of them, counted as one step of one process.
+double project_gather_s(double particles, int ranks, double one_process_step_s, const NetworkModel& network,
+                        const CodeTraffic& traffic);
+
+/// Rounds of a collective over `ranks`: ceil(log2 ranks), 0 for one.
+int collective_rounds(int ranks);
+
+}  // namespace regodem

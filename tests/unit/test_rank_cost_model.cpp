@@ -1,0 +1,84 @@
+// The cost model of a run over many ranks (src/parallel/rank_cost_model.hpp): the cut's
+// own particles, ghosts and partners on a lattice, counted by hand, and the projection's
+// limits (one rank is one process; a free network leaves the ghosts' extra work alone).
+#include <gtest/gtest.h>
+
+#include "parallel/rank_cost_model.hpp"
+
+namespace regodem {
+namespace {
+
+// 10 x 10 x 10 points at the centres of cells of side d in a cube of 10 d: the cuts fall
+// between layers, at 5 d (RecursiveBisection cuts midway between distinct coordinates).
+constexpr double d = 1e-3;
+std::vector<Vec3> lattice() {
+  std::vector<Vec3> points;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 10; ++k) points.push_back({(i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * d});
+  return points;
+}
+const Brick cube{{0, 0, 0}, {10 * d, 10 * d, 10 * d}};
+
+TEST(RankCostModel, TwoBricksEachHoldTheOthersNearestLayerAsGhosts) {
+  const std::vector<Vec3> points = lattice();
+  // The nearest layer of the other brick is 0.5 d away, the next 1.5 d.
+  const RankShares shares = cut_into_bricks(cube, points, {}, 0.6 * d, 2);
+  for (int r = 0; r < 2; ++r) {
+    EXPECT_EQ(shares.own[r], 500u);
+    EXPECT_EQ(shares.ghosts[r], 100u);
+    EXPECT_EQ(shares.partners[r], 1);
+  }
+  EXPECT_DOUBLE_EQ(shares.total_work, 1000.0);
+}
+
+TEST(RankCostModel, EightBricksTakeFacesEdgesAndCornersWithinReach) {
+  const std::vector<Vec3> points = lattice();
+  // Each brick is 5 x 5 x 5 in a corner of the cube. Its three face neighbours' nearest
+  // layers (25 points each) are 0.5 d away, the three edge neighbours' nearest rows (5
+  // each) 0.71 d, the corner neighbour's nearest point 0.87 d.
+  const RankShares faces = cut_into_bricks(cube, points, {}, 0.6 * d, 8);
+  const RankShares all = cut_into_bricks(cube, points, {}, 0.9 * d, 8);
+  for (int r = 0; r < 8; ++r) {
+    EXPECT_EQ(faces.own[r], 125u);
+    EXPECT_EQ(faces.ghosts[r], 75u);
+    EXPECT_EQ(faces.partners[r], 3);
+    EXPECT_EQ(all.ghosts[r], 75u + 15u + 1u);
+    EXPECT_EQ(all.partners[r], 7);
+  }
+}
+
+TEST(RankCostModel, OneRankIsOneProcess) {
+  const std::vector<Vec3> points = lattice();
+  const OneProcessStep one{1000.0, 1e-3, 0.1};
+  const RankStepCost cost = project_step(cut_into_bricks(cube, points, {}, 0.6 * d, 1), one, NetworkModel{}, code_traffic());
+  EXPECT_EQ(cost.step_s, 1e-3);
+  EXPECT_EQ(cost.efficiency, 1.0);
+  EXPECT_EQ(project_gather_s(1000.0, 1, 1e-3, NetworkModel{}, code_traffic()), 0.0);
+}
+
+TEST(RankCostModel, AFreeNetworkLeavesTheGhostsWork) {
+  const std::vector<Vec3> points = lattice();
+  NetworkModel free;
+  free.latency_s = 0.0;
+  free.bandwidth_bytes_per_s = std::numeric_limits<double>::infinity();
+  // Each rank steps its 125 own particles and its 91 ghosts, at one process's cost per
+  // particle; the counts scale with the run's particles (2,000 for this sample of 1,000).
+  const OneProcessStep one{2000.0, 1e-3, 0.1};
+  const RankStepCost cost = project_step(cut_into_bricks(cube, points, {}, 0.9 * d, 8), one, free, code_traffic());
+  EXPECT_NEAR(cost.step_s, 1e-3 * (125.0 + 91.0) / 1000.0, 1e-15);
+  EXPECT_NEAR(cost.efficiency, 1000.0 / (8.0 * 216.0), 1e-12);
+  EXPECT_DOUBLE_EQ(cost.own, 250.0);
+  EXPECT_DOUBLE_EQ(cost.ghosts, 182.0);
+}
+
+TEST(RankCostModel, ACollectiveTakesLog2RanksRounds) {
+  EXPECT_EQ(collective_rounds(1), 0);
+  EXPECT_EQ(collective_rounds(2), 1);
+  EXPECT_EQ(collective_rounds(3), 2);
+  EXPECT_EQ(collective_rounds(1024), 10);
+  EXPECT_EQ(collective_rounds(1025), 11);
+}
+
+}  // namespace
+}  // namespace regodem

@@ -68,6 +68,29 @@ RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, st
   return shares;
 }
 
+RankShares uniform_shares(int ranks, std::size_t own, std::size_t ghosts) {
+  if (ranks < 1) throw InputError(fmt::format("{} ranks: at least one", ranks));
+  const auto n = static_cast<std::size_t>(ranks);
+  RankShares shares;
+  shares.ranks = ranks;
+  shares.own.assign(n, own);
+  shares.ghosts.assign(n, ranks > 1 ? ghosts : 0);
+  shares.own_work.assign(n, static_cast<double>(own));
+  shares.ghost_work.assign(n, ranks > 1 ? static_cast<double>(ghosts) : 0.0);
+  shares.partners.assign(n, std::min(26, ranks - 1));
+  shares.total_work = static_cast<double>(own) * ranks;
+  return shares;
+}
+
+double cubic_brick_ghosts(double own, double particles_per_m3, double reach_m) {
+  const double side_m = std::cbrt(own / particles_per_m3), pi = std::acos(-1.0);
+  // The brick grown by a ball of radius reach (Steiner): 6 faces, 12 quarter-cylinder
+  // edges, 8 eighth-sphere corners.
+  const double shell_m3 = 6.0 * side_m * side_m * reach_m + 3.0 * pi * side_m * reach_m * reach_m +
+                          4.0 / 3.0 * pi * reach_m * reach_m * reach_m;
+  return particles_per_m3 * shell_m3;
+}
+
 RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, const NetworkModel& network,
                           const CodeTraffic& traffic) {
   RankStepCost cost;

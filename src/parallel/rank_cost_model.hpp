@@ -85,6 +85,16 @@ RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, c
 double project_gather_s(double particles, int ranks, double one_process_step_s, const NetworkModel& network,
                         const CodeTraffic& traffic);
 
+/// Weak scaling: every rank holds an interior brick of a bed that grows with the ranks,
+/// `own` particles each, with `ghosts` from min(26, ranks - 1) partners (its face, edge and
+/// corner neighbours in a 3-D arrangement).
+RankShares uniform_shares(int ranks, std::size_t own, std::size_t ghosts);
+
+/// The ghosts of a cubic brick of `own` particles in a bed of `particles_per_m3`: those in
+/// the shell within `reach_m` of it (the brick grown by a sphere: faces, rounded edges
+/// and corners).
+double cubic_brick_ghosts(double own, double particles_per_m3, double reach_m);
+
 /// Rounds of a collective over `ranks`: ceil(log2 ranks), 0 for one.
 int collective_rounds(int ranks);
 

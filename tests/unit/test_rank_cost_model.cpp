@@ -72,6 +72,37 @@ TEST(RankCostModel, AFreeNetworkLeavesTheGhostsWork) {
   EXPECT_DOUBLE_EQ(cost.ghosts, 182.0);
 }
 
+// A brick of 20 x 20 x 20 lattice points: the points of the lattice around it within 2 d
+// of it, counted one by one, against the shell's volume x the lattice's density. The
+// lattice's layers lie at 0.5 d and 1.5 d from the faces, so its count differs from the
+// volume's by a few per cent at most (2 % allowed).
+TEST(RankCostModel, ACubicBricksGhostsAreItsShellWithinReach) {
+  const double reach = 2.0 * d;
+  std::size_t counted = 0;
+  for (int i = -3; i < 23; ++i)
+    for (int j = -3; j < 23; ++j)
+      for (int k = -3; k < 23; ++k) {
+        const Vec3 x{(i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * d};
+        const Brick brick{{0, 0, 0}, {20 * d, 20 * d, 20 * d}};
+        const double distance = brick.distance_m(x);
+        if (distance > 0.0 && distance <= reach) ++counted;
+      }
+  const double ghosts = cubic_brick_ghosts(8000.0, 1.0 / (d * d * d), reach);
+  EXPECT_NEAR(ghosts, static_cast<double>(counted), 0.02 * static_cast<double>(counted));
+}
+
+TEST(RankCostModel, UniformSharesStepEveryRanksOwnAndGhosts) {
+  NetworkModel free;
+  free.latency_s = 0.0;
+  free.bandwidth_bytes_per_s = std::numeric_limits<double>::infinity();
+  const RankShares shares = uniform_shares(64, 1000, 500);
+  EXPECT_EQ(shares.partners[0], 26);
+  EXPECT_EQ(uniform_shares(8, 1000, 500).partners[0], 7);
+  // 64 ranks of 1,000 particles: one process would step 64,000 in 64 ms.
+  const RankStepCost cost = project_step(shares, OneProcessStep{64000.0, 64e-3, 0.0}, free, code_traffic());
+  EXPECT_NEAR(cost.step_s, 1.5e-3, 1e-15);
+}
+
 TEST(RankCostModel, ACollectiveTakesLog2RanksRounds) {
   EXPECT_EQ(collective_rounds(1), 0);
   EXPECT_EQ(collective_rounds(2), 1);

@@ -37,16 +37,20 @@ pid_t spawn_child(const std::string& program, const ChildJob& job) {
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
-  // A child is a run of its own: not a rank of the job that started this process.
+  // A child is a run (or an mpirun) of its own, not a rank of the job that started this
+  // process: the launcher's variables stay behind; the user's permission to run MPI as
+  // root and MPI's own tuning (OMPI_MCA_mpi_*) go with it.
   std::vector<char*> environment;
   for (char** variable = environ; *variable != nullptr; ++variable) {
     const std::string_view text(*variable);
-    if (text.starts_with("OMPI_") || text.starts_with("PMI_") || text.starts_with("PMIX_")) continue;
+    const bool users = text.starts_with("OMPI_ALLOW_RUN_AS_ROOT") || text.starts_with("OMPI_MCA_mpi_");
+    if (!users && (text.starts_with("OMPI_") || text.starts_with("PMI_") || text.starts_with("PMIX_"))) continue;
     environment.push_back(*variable);
   }
   environment.push_back(nullptr);
   pid_t pid = -1;
-  const int error = posix_spawn(&pid, program.c_str(), &actions, &attributes, argv.data(), environment.data());
+  // A program named without a folder (mpirun) is looked for on the PATH.
+  const int error = posix_spawnp(&pid, program.c_str(), &actions, &attributes, argv.data(), environment.data());
   posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0) throw std::runtime_error(fmt::format("cannot start {}: {}", program, std::strerror(error)));

@@ -28,7 +28,8 @@ struct ChildEvents {
   std::function<void(std::size_t job, const ChildResult&)> finished;
 };
 
-/// Runs `jobs` with `program`, at most `processes` at once, in order. Each child gets
+/// Runs `jobs` with `program` (a path, or a name looked for on the PATH), at most
+/// `processes` at once, in order. Each child gets
 /// its own process group, so a Ctrl-C at the terminal reaches this process only and is
 /// passed on exactly once: the first increase of `signals` (install_signal_counter)
 /// sends SIGINT to the running children, which stop cleanly and write their summaries

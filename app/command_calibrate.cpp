@@ -209,10 +209,13 @@ std::string interrupted_line(const CalibrateOptions& options, const fs::path& ou
 
 int calibrate(const CalibrateOptions& options) {
   const CalibrationSpec spec = read_calibration_file(options.calibration_path);
-  const int processes = options.processes > 0 ? options.processes
-                        : spec.processes > 0
-                            ? spec.processes
-                            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / spec.threads_per_run);
+  const RunLauncher launcher =
+      RunLauncher::from(options.ranks_per_run > 0 ? options.ranks_per_run : spec.ranks_per_run, options.mpirun);
+  const int processes =
+      options.processes > 0 ? options.processes
+      : spec.processes > 0  ? spec.processes
+                            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /
+                                              (spec.threads_per_run * launcher.ranks));
   const fs::path output =
       fs::absolute(options.output_directory.empty() ? fs::path("out") / fs::path(options.calibration_path).stem()
                                                     : fs::path(options.output_directory))
@@ -232,11 +235,11 @@ int calibrate(const CalibrateOptions& options) {
   const int total = static_cast<int>(design.runs.size()) + 2;
   RunBatches::say(
       fmt::format("calibration {}: {} design points ({} factors, α = {:.6g}) + reference + verification = "
-                  "{} runs, {} at once, {} thread{} each; outputs in {}",
+                  "{} runs, {} at once, {} thread{} each{}; outputs in {}",
                   spec.file, design.runs.size(), spec.factors.size(), design.alpha, total, processes,
-                  spec.threads_per_run, spec.threads_per_run == 1 ? "" : "s", output.string()));
+                  spec.threads_per_run, spec.threads_per_run == 1 ? "" : "s", launcher.description(), output.string()));
   const std::atomic<int>& signals = install_signal_counter();
-  RunBatches batches(output, processes, spec.threads_per_run, total, signals);
+  RunBatches batches(output, processes, spec.threads_per_run, launcher, total, signals);
   const auto stopped = [&](int status) {
     if (status == exit_status::interrupted)
       fmt::print(stderr, "{}\n", interrupted_line(options, output, batches.finished(), total));
@@ -429,6 +432,13 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& options) {
   calibrate->add_option("--processes", options.processes, "Runs at once (default: the file's `processes`)")
       ->type_name("N")
       ->check(CLI::Range(1, 4096));
+  calibrate->add_option("--ranks-per-run", options.ranks_per_run,
+                        "Each run over N MPI ranks, started with --mpirun (default: the file's `ranks_per_run`, 1)")
+      ->type_name("N")
+      ->check(CLI::Range(1, 4096));
+  calibrate->add_option("--mpirun", options.mpirun,
+                        "The launcher of a run over ranks, with its options (default: mpirun); -np N is added")
+      ->type_name("COMMAND");
   calibrate->footer(
       "Runs the reference, every point of a central composite design, and a verification run at the solution, each\n"
       "as `regodem run` into OUTDIR/runs/NAME; writes OUTDIR/design.csv, runs.csv, fit.txt, fit.json and\n"

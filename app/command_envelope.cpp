@@ -157,10 +157,13 @@ void draw_map(const fs::path& output, const EnvelopeSpec& spec) {
 
 int envelope(const EnvelopeOptions& options) {
   const EnvelopeSpec spec = read_envelope_file(options.envelope_path);
-  const int processes = options.processes > 0 ? options.processes
-                        : spec.processes > 0
-                            ? spec.processes
-                            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / spec.threads_per_run);
+  const RunLauncher launcher =
+      RunLauncher::from(options.ranks_per_run > 0 ? options.ranks_per_run : spec.ranks_per_run, options.mpirun);
+  const int processes =
+      options.processes > 0 ? options.processes
+      : spec.processes > 0  ? spec.processes
+                            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /
+                                              (spec.threads_per_run * launcher.ranks));
   const fs::path output =
       fs::absolute(options.output_directory.empty() ? fs::path("out") / fs::path(options.envelope_path).stem()
                                                     : fs::path(options.output_directory))
@@ -187,12 +190,12 @@ int envelope(const EnvelopeOptions& options) {
     throw InputError(fmt::format("cannot create the output directory {}: {}", output.string(), error.message()));
   write_file_atomically(output / "design.csv", doe::design_csv(design));
   const int total = static_cast<int>(design.runs.size());
-  RunBatches::say(fmt::format("envelope {}: {} design points ({} factors, α = {:.6g}), {} at once, {} thread{} each; "
+  RunBatches::say(fmt::format("envelope {}: {} design points ({} factors, α = {:.6g}), {} at once, {} thread{} each{}; "
                               "outputs in {}",
                               spec.file, total, spec.factors.size(), design.alpha, processes, spec.threads_per_run,
-                              spec.threads_per_run == 1 ? "" : "s", output.string()));
+                              spec.threads_per_run == 1 ? "" : "s", launcher.description(), output.string()));
   const std::atomic<int>& signals = install_signal_counter();
-  RunBatches batches(output, processes, spec.threads_per_run, total, signals);
+  RunBatches batches(output, processes, spec.threads_per_run, launcher, total, signals);
   std::vector<PlannedRun> points;
   for (std::size_t p = 0; p < design.runs.size(); ++p)
     points.push_back({static_cast<int>(p) + 1, fmt::format("point_{:02}", p + 1), spec.scenario,
@@ -313,6 +316,13 @@ CLI::App* add_envelope_command(CLI::App& app, EnvelopeOptions& options) {
   command->add_option("--processes", options.processes, "Runs at once (default: the file's `processes`)")
       ->type_name("N")
       ->check(CLI::Range(1, 4096));
+  command->add_option("--ranks-per-run", options.ranks_per_run,
+                        "Each run over N MPI ranks, started with --mpirun (default: the file's `ranks_per_run`, 1)")
+      ->type_name("N")
+      ->check(CLI::Range(1, 4096));
+  command->add_option("--mpirun", options.mpirun,
+                        "The launcher of a run over ranks, with its options (default: mpirun); -np N is added")
+      ->type_name("COMMAND");
   command->footer(
       "Runs every point of a central composite design as `regodem run` into OUTDIR/runs/point_NN; writes\n"
       "OUTDIR/design.csv, runs.csv, fit.txt, map.csv, envelope.json and envelope_map.png. A run already completed\n"

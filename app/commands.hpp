@@ -102,6 +102,8 @@ struct CalibrateOptions {
   std::string calibration_path;
   std::string output_directory;  // empty: out/<calibration file stem>
   int processes = 0;             // 0: the file's `processes`
+  int ranks_per_run = 0;         // 0: the file's `ranks_per_run`
+  std::string mpirun = "mpirun"; // how a run over ranks is started
 };
 
 /// `regodem envelope` (command_envelope.cpp).
@@ -109,6 +111,8 @@ struct EnvelopeOptions {
   std::string envelope_path;
   std::string output_directory;  // empty: out/<envelope file stem>
   int processes = 0;             // 0: the file's `processes`
+  int ranks_per_run = 0;         // 0: the file's `ranks_per_run`
+  std::string mpirun = "mpirun"; // how a run over ranks is started
 };
 
 /// `regodem estimate` (command_estimate.cpp).

@@ -1,10 +1,12 @@
 #include "design_runs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -141,11 +143,30 @@ double summary_number(const ordered_json& summary, const std::string& path, cons
 }
 
 
-RunBatches::RunBatches(fs::path output, int processes, int threads_per_run, int total_runs,
+RunLauncher RunLauncher::from(int ranks, const std::string& mpirun_command) {
+  RunLauncher launcher;
+  launcher.ranks = std::max(1, ranks);
+  launcher.mpirun.clear();
+  std::istringstream words(mpirun_command);
+  for (std::string word; words >> word;) launcher.mpirun.push_back(word);
+  if (launcher.ranks > 1 && launcher.mpirun.empty())
+    throw InputError("--mpirun is empty: runs over MPI ranks need a launcher (mpirun, mpiexec, srun, ...)");
+  return launcher;
+}
+
+std::string RunLauncher::description() const {
+  if (ranks <= 1) return "";
+  std::string command;
+  for (const std::string& word : mpirun) command += (command.empty() ? "" : " ") + word;
+  return fmt::format(", over {} MPI ranks ({} -np {})", ranks, command, ranks);
+}
+
+RunBatches::RunBatches(fs::path output, int processes, int threads_per_run, RunLauncher launcher, int total_runs,
                        const std::atomic<int>& signals)
     : output_(std::move(output)),
       processes_(processes),
       threads_per_run_(threads_per_run),
+      launcher_(std::move(launcher)),
       total_(total_runs),
       signals_(signals),
       program_(own_executable()) {}
@@ -167,9 +188,12 @@ int RunBatches::run(const std::vector<PlannedRun>& runs) {
       continue;
     }
     ChildJob job;
-    job.arguments = {"run",       planned.scenario,
-                     "-o",        directory(planned).string(),
-                     "--threads", std::to_string(threads_per_run_)};
+    if (launcher_.ranks > 1) {  // mpirun [its options] -np N regodem run ...
+      job.arguments.assign(launcher_.mpirun.begin() + 1, launcher_.mpirun.end());
+      job.arguments.insert(job.arguments.end(), {"-np", std::to_string(launcher_.ranks), program_});
+    }
+    job.arguments.insert(job.arguments.end(), {"run", planned.scenario, "-o", directory(planned).string(), "--threads",
+                                               std::to_string(threads_per_run_)});
     for (const std::string& s : planned.set) {
       job.arguments.push_back("--set");
       job.arguments.push_back(s);
@@ -210,7 +234,8 @@ int RunBatches::run(const std::vector<PlannedRun>& runs) {
                                       format_wall_duration(left_s), left, processes_, format_wall_duration(mean_s))
                         : ""));
   };
-  const auto results = run_children(program_, jobs, processes_, signals_, events);
+  const auto results =
+      run_children(launcher_.ranks > 1 ? launcher_.mpirun.front() : program_, jobs, processes_, signals_, events);
   if (signals_.load() > 0) return exit_status::interrupted;
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     if (results[j] && results[j]->exit_code != 0) {

@@ -57,10 +57,23 @@ nlohmann::ordered_json read_summary(const fs::path& directory);
 double summary_number(const nlohmann::ordered_json& summary, const std::string& path, const std::string& where,
                       const std::string& run);
 
+/// How a study starts each of its runs: this program, or this program over MPI ranks
+/// through a launcher (`mpirun -np ranks regodem run ...`, docs/mpi.md).
+struct RunLauncher {
+  int ranks = 1;
+  std::vector<std::string> mpirun{"mpirun"};  // the launcher and its own options, used when ranks > 1
+
+  /// From `ranks_per_run` and the `--mpirun` text (split at spaces); InputError when empty.
+  static RunLauncher from(int ranks, const std::string& mpirun_command);
+  /// ", over N MPI ranks (mpirun ...)" for a progress line; empty for one.
+  std::string description() const;
+};
+
 /// Runs, skips and reports batches of runs; keeps the progress count across batches.
 class RunBatches {
  public:
-  RunBatches(fs::path output, int processes, int threads_per_run, int total_runs, const std::atomic<int>& signals);
+  RunBatches(fs::path output, int processes, int threads_per_run, RunLauncher launcher, int total_runs,
+             const std::atomic<int>& signals);
 
   fs::path directory(const PlannedRun& run) const { return output_ / "runs" / run.name; }
   fs::path log(const PlannedRun& run) const { return output_ / "logs" / (run.name + ".log"); }
@@ -78,6 +91,7 @@ class RunBatches {
   fs::path output_;
   int processes_;
   int threads_per_run_;
+  RunLauncher launcher_;
   int total_;
   const std::atomic<int>& signals_;
   std::string program_;

@@ -45,6 +45,7 @@ struct EnvelopeSpec {
   EnvelopeMap map;
   int processes = 0;        // runs at once; 0: the cores / threads_per_run
   int threads_per_run = 1;  // --threads of each run
+  int ranks_per_run = 1;    // > 1: each run under `mpirun -np ranks_per_run` (docs/mpi.md)
 };
 
 }  // namespace regodem::doe

@@ -335,9 +335,10 @@ std::optional<int> read_count(const YamlSection& root, std::string_view key) {
   return std::nullopt;
 }
 
-void read_runs(const YamlSection& root, int& processes, int& threads_per_run) {
+void read_runs(const YamlSection& root, int& processes, int& threads_per_run, int& ranks_per_run) {
   processes = read_count(root, "processes").value_or(processes);
   threads_per_run = read_count(root, "threads_per_run").value_or(threads_per_run);
+  ranks_per_run = read_count(root, "ranks_per_run").value_or(ranks_per_run);
 }
 
 /// Envelope responses: a summary.json value, or a column of one of the run's CSV files reduced.
@@ -426,7 +427,8 @@ doe::EnvelopeSpec read_envelope_string(const std::string& yaml_text, const std::
   top_section->allow_only({"envelope"});
   const auto root = top_section->get("envelope")->section();
   if (root) {
-    root->allow_only({"scenario", "set", "factors", "design", "responses", "map", "processes", "threads_per_run"});
+    root->allow_only({"scenario", "set", "factors", "design", "responses", "map", "processes", "threads_per_run",
+                      "ranks_per_run"});
     const std::string base = fs::path(file_name_for_messages).parent_path().string();
     spec.scenario = read_scenario_path(*root, base).value_or("");
     spec.set = read_set_list(*root, "set");
@@ -436,7 +438,7 @@ doe::EnvelopeSpec read_envelope_string(const std::string& yaml_text, const std::
     read_design(*root, spec.design);
     read_envelope_responses(*root, spec);
     read_envelope_map(*root, spec);
-    read_runs(*root, spec.processes, spec.threads_per_run);
+    read_runs(*root, spec.processes, spec.threads_per_run, spec.ranks_per_run);
   }
   context.diagnostics.throw_if_any();
   return spec;
@@ -462,7 +464,8 @@ doe::CalibrationSpec read_calibration_string(const std::string& yaml_text, const
   const auto root = top_section->get("calibration")->section();
   if (root) {
     root->allow_only(
-        {"scenario", "reference", "set", "factors", "design", "responses", "solve", "processes", "threads_per_run"});
+        {"scenario", "reference", "set", "factors", "design", "responses", "solve", "processes", "threads_per_run",
+         "ranks_per_run"});
     const std::string base = fs::path(file_name_for_messages).parent_path().string();
     spec.scenario = read_scenario_path(*root, base).value_or("");
     read_reference(*root, base, spec);
@@ -471,7 +474,7 @@ doe::CalibrationSpec read_calibration_string(const std::string& yaml_text, const
     read_design(*root, spec.design);
     read_responses(*root, spec);
     read_solve(*root, spec);
-    read_runs(*root, spec.processes, spec.threads_per_run);
+    read_runs(*root, spec.processes, spec.threads_per_run, spec.ranks_per_run);
   }
   context.diagnostics.throw_if_any();
   return spec;

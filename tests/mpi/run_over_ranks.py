@@ -19,7 +19,9 @@ Bounds, stated before the runs:
 - the tiny drilling model (bonds, a turning auger, a lumped sieve, lost grains) breaks
   the same bonds at the same instants on every rank count (bond_breaks.csv byte for byte);
 - a run that cannot start on one rank stops every rank with its message, exit status 2,
-  within the timeout (no rank waits for one that stopped).
+  within the timeout (no rank waits for one that stopped);
+- a study (`envelope --ranks-per-run 2`) runs each point over 2 ranks, with the responses
+  of the runs in one process (runs.csv byte for byte: one grain, stepped alike).
 """
 import csv
 import filecmp
@@ -184,6 +186,33 @@ bad = mpirun(2, "run", str(SCENARIOS / "unknown_key.yaml"), "-o", str(WORK / "ba
 check(bad.returncode == 2 and bad.stderr.count("regodem: error:") == 1,
       f"a bad scenario: exit status {bad.returncode}, stderr:\n{bad.stderr}")
 check(not (WORK / "bad").exists(), "a bad scenario: the refused run left its directory")
+
+# A study whose runs go over ranks (`envelope --ranks-per-run 2`, each run started as
+# `MPIEXEC --oversubscribe -np 2 regodem run ...`): every run says it ran over 2 ranks, and
+# the responses equal those of runs in one process (the grain on a plate: one grain, its
+# temperature stepped bit for bit alike; runs.csv byte for byte).
+CALIBRATE = SCENARIOS / "calibrate"
+study = WORK / "envelope"
+shutil.rmtree(study, ignore_errors=True)
+study.mkdir(parents=True)
+for name in ("plate.yaml", "grain.csv", "plate_envelope.yaml"):
+    shutil.copy(CALIBRATE / name, study / name)
+study_env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1",
+                 OMPI_MCA_mpi_yield_when_idle="1")
+one = subprocess.run([REGODEM, "envelope", "plate_envelope.yaml", "-o", "one", "--processes", "1"], cwd=study,
+                     capture_output=True, text=True, env=study_env, timeout=TIMEOUT_S)
+two = subprocess.run([REGODEM, "envelope", "plate_envelope.yaml", "-o", "two", "--processes", "1", "--ranks-per-run",
+                      "2", "--mpirun", f"{MPIEXEC} --oversubscribe"], cwd=study, capture_output=True, text=True,
+                     env=study_env, timeout=TIMEOUT_S)
+check(one.returncode == 0, f"envelope in one process: exit status {one.returncode}\n{one.stdout[-2000:]}{one.stderr[-2000:]}")
+check(two.returncode == 0, f"envelope over ranks: exit status {two.returncode}\n{two.stdout[-2000:]}{two.stderr[-2000:]}")
+if one.returncode == 0 and two.returncode == 0:
+    check("over 2 MPI ranks" in two.stdout, "envelope over ranks: the progress does not say so")
+    logs = sorted((study / "two" / "logs").glob("*.log"))
+    check(len(logs) > 0 and all("over 2 MPI ranks" in log.read_text() for log in logs),
+          f"envelope over ranks: not every run of {len(logs)} ran over 2 ranks")
+    check(filecmp.cmp(study / "one" / "runs.csv", study / "two" / "runs.csv", shallow=False),
+          "envelope over ranks: runs.csv differs from the runs in one process")
 
 print("run over ranks:", "FAILED" if failures else "passed", f"({len(failures)} failures)")
 sys.exit(1 if failures else 0)

@@ -106,7 +106,9 @@ RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, c
   for (std::size_t r = 0; r < shares.own.size(); ++r) {
     if (shares.ranks == 1) break;
     const double ghosts = scale * static_cast<double>(shares.ghosts[r]);
-    // Ghosts cost as own particles: their pairs with own particles and with each other are listed.
+    // A ghost is charged an own particle's cost, an upper bound: it is binned and listed and
+    // its pairs with own particles are computed here too, but its pairs with other ghosts
+    // are skipped and it is not integrated.
     const double compute_s = one.step_s * (shares.own_work[r] + shares.ghost_work[r]) / shares.total_work;
     // An exchange: the all-to-all of counts (rounds x latency, 4 bytes per rank per
     // round), then one message from each partner.

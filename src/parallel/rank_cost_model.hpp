@@ -68,7 +68,7 @@ struct RankStepCost {
   int slowest_rank = 0;
   double own = 0.0, ghosts = 0.0;  // the slowest rank's (scaled to the run's particles)
   int partners = 0;
-  double compute_s = 0.0;      // its own particles and ghosts at one process's cost per particle
+  double compute_s = 0.0;      // its own particles and ghosts at one process's cost per particle (an upper bound)
   double halo_s = 0.0;         // its ghost refreshes
   double build_s = 0.0;        // its share of the neighbour builds' messages, per step
   double collectives_s = 0.0;  // every rank's

@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "run_ranks.hpp"
 
 extern char** environ;
 
@@ -37,14 +38,14 @@ pid_t spawn_child(const std::string& program, const ChildJob& job) {
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
-  // A child is a run (or an mpirun) of its own, not a rank of the job that started this
-  // process: the launcher's variables stay behind; the user's permission to run MPI as
-  // root and MPI's own tuning (OMPI_MCA_mpi_*) go with it.
+  // A child is a run (or an mpirun) of its own. Where this process is itself a rank of an
+  // MPI job, the launcher's variables stay behind (the child would take itself for a rank of
+  // that job); otherwise the environment is passed on whole (MPI settings included).
+  const bool a_rank = started_as_mpi_rank();
   std::vector<char*> environment;
   for (char** variable = environ; *variable != nullptr; ++variable) {
     const std::string_view text(*variable);
-    const bool users = text.starts_with("OMPI_ALLOW_RUN_AS_ROOT") || text.starts_with("OMPI_MCA_mpi_");
-    if (!users && (text.starts_with("OMPI_") || text.starts_with("PMI_") || text.starts_with("PMIX_"))) continue;
+    if (a_rank && (text.starts_with("OMPI_") || text.starts_with("PMI_") || text.starts_with("PMIX_"))) continue;
     environment.push_back(*variable);
   }
   environment.push_back(nullptr);

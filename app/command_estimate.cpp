@@ -73,11 +73,10 @@ void print_table(const RunEstimate& e, int threads) {
 void print_over_ranks(const RunEstimate& e, const EstimateOptions& options, int threads) {
   if (options.ranks.empty()) return;
   const CodeTraffic traffic = code_traffic();
-  fmt::print("\nover MPI ranks ({} thread{} each; network latency {:.3g} us, {:.3g} GB/s per rank; ghosts {} B per "
-             "step, a gather {} B per particle; see docs/estimate.md):\n",
+  fmt::print("\nover MPI ranks ({} thread{} each; network latency {:.3g} us, {:.3g} GB/s per rank; a ghost {} B per "
+             "step; see docs/estimate.md):\n",
              threads, threads == 1 ? "" : "s", options.network.latency_s * 1e6,
-             options.network.bandwidth_bytes_per_s / 1e9, traffic.refresh_bytes_per_ghost,
-             traffic.gathered_bytes_per_particle);
+             options.network.bandwidth_bytes_per_s / 1e9, traffic.refresh_bytes_per_ghost);
   fmt::print("{:>6} {:<16} {:>10} {:>9} {:>8} {:>10} {:>9} {:>9} {:>9} {:>9} {:>10} {:>10} {:>16} {:>6}\n", "ranks", "stage",
              "own/rank", "ghosts", "partners", "step", "compute", "halo", "builds", "collect.", "gathers", "each",
              "predicted", "eff.");
@@ -204,12 +203,12 @@ CLI::App* add_estimate_command(CLI::App& app, EstimateCommandOptions& options) {
                        "Also predict the run on N MPI ranks (each with --threads threads); repeatable, or N,M,...")
       ->type_name("N")
       ->delimiter(',')
-      ->check(CLI::Range(1, 1 << 20));
+      ->check(CLI::Range(1, kMostProjectedRanks));
   estimate->add_option("--latency-us", options.latency_us,
                        "For --ranks: the network's latency per message or collective round, in us (default 2)")
       ->check(CLI::PositiveNumber);
-  estimate->add_option("--bandwidth-gbps", options.bandwidth_GB_per_s,
-                       "For --ranks: the bandwidth of one rank, in GB/s (default 10)")
+  estimate->add_option("--bandwidth-gb-per-s", options.bandwidth_GB_per_s,
+                       "For --ranks: the bandwidth of one rank, in gigabytes (not bits) per second (default 10)")
       ->check(CLI::PositiveNumber);
   estimate->footer(
       "Each stage's particles are put in place at once, on a lattice at the solid fraction, and a few hundred of\n"

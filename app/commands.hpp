@@ -103,7 +103,8 @@ struct CalibrateOptions {
   std::string output_directory;  // empty: out/<calibration file stem>
   int processes = 0;             // 0: the file's `processes`
   int ranks_per_run = 0;         // 0: the file's `ranks_per_run`
-  std::string mpirun = "mpirun"; // how a run over ranks is started
+  // How a run over ranks is started: ranks not bound to cores, since several runs share them.
+  std::string mpirun = "mpirun --bind-to none";
 };
 
 /// `regodem envelope` (command_envelope.cpp).
@@ -112,7 +113,8 @@ struct EnvelopeOptions {
   std::string output_directory;  // empty: out/<envelope file stem>
   int processes = 0;             // 0: the file's `processes`
   int ranks_per_run = 0;         // 0: the file's `ranks_per_run`
-  std::string mpirun = "mpirun"; // how a run over ranks is started
+  // How a run over ranks is started: ranks not bound to cores, since several runs share them.
+  std::string mpirun = "mpirun --bind-to none";
 };
 
 /// `regodem estimate` (command_estimate.cpp).

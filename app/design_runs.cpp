@@ -150,7 +150,7 @@ RunLauncher RunLauncher::from(int ranks, const std::string& mpirun_command) {
   std::istringstream words(mpirun_command);
   for (std::string word; words >> word;) launcher.mpirun.push_back(word);
   if (launcher.ranks > 1 && launcher.mpirun.empty())
-    throw InputError("--mpirun is empty: runs over MPI ranks need a launcher (mpirun, mpiexec, srun, ...)");
+    throw InputError("--mpirun is empty: runs over MPI ranks need a launcher that takes -np N (mpirun, mpiexec)");
   return launcher;
 }
 

@@ -3,7 +3,7 @@
 // (half a round trip of 8 bytes), the bandwidth of a large one (4 MiB each way), and the
 // time of one small allreduce (one collective round on two ranks). Run it where the ranks
 // of a real run would be (one machine's shared memory, or two nodes of a cluster) and give
-// its figures to `regodem estimate --ranks N --latency-us L --bandwidth-gbps B`.
+// its figures to `regodem estimate --ranks N --latency-us L --bandwidth-gb-per-s B`.
 //
 //   mpirun -np 2 build/release/bench/bench_ping_pong
 #include <mpi.h>

@@ -55,7 +55,11 @@ int run(int argc, char** argv) {
   const std::size_t count = argc > 1 ? std::stoul(argv[1]) : 20000;
   const std::uint64_t steps = argc > 2 ? std::stoull(argv[2]) : 1000;
   const bool plain = argc > 3 && std::string(argv[3]) == "plain";
-  const bool project = argc > 6 && std::string(argv[3]) == "project";
+  const bool project = argc > 3 && std::string(argv[3]) == "project";
+  if (project && argc < 7) {
+    if (comm.rank() == 0) std::fprintf(stderr, "project needs RATE LATENCY_US BANDWIDTH_GB_PER_S\n");
+    return 2;
+  }
   if (plain && comm.size() != 1) {
     std::fprintf(stderr, "plain runs on one rank\n");
     return 2;
@@ -122,11 +126,11 @@ int run(int argc, char** argv) {
   // The check: this run's step predicted from one process's rate, the bricks cut as the
   // run cut them (on the bed it read, unweighted).
   std::vector<Vec3> points;
-  Vec3 lo = bed.front().position_m, hi = lo;
+  double low_m = bed.front().position_m.z, high_m = low_m;
   for (const ParticleRecord& r : bed) {
     points.push_back(r.position_m);
-    lo = {std::min(lo.x, r.position_m.x), std::min(lo.y, r.position_m.y), std::min(lo.z, r.position_m.z)};
-    hi = {std::max(hi.x, r.position_m.x), std::max(hi.y, r.position_m.y), std::max(hi.z, r.position_m.z)};
+    low_m = std::min(low_m, r.position_m.z);
+    high_m = std::max(high_m, r.position_m.z);
   }
   const Domain& domain = sim.settings().domain;
   const RankStepCost check =
@@ -141,7 +145,12 @@ int run(int argc, char** argv) {
   // Weak scaling: every rank an interior cubic brick of this bed's density holding this
   // run's grains per rank, on a cluster's network.
   const NetworkModel cluster;
-  const double per_m3 = particles / ((hi.x - lo.x) * (hi.y - lo.y) * (hi.z - lo.z));
+  // The bed fills the cup from its floor to the top grains' centres (+ a radius).
+  const double per_m3 =
+      particles / (std::acos(-1.0) * kCylinderRadius * kCylinderRadius * (high_m - low_m + 2.0 * kRadius));
+  // The run's contacts (summed over the ranks by the step), each a history entry gathered.
+  const double contacts =
+      static_cast<double>(sim.contact_statistics().particle_contacts + sim.contact_statistics().wall_contacts);
   const std::size_t own_per_rank = total / static_cast<std::size_t>(comm.size());
   const auto ghost_count =
       static_cast<std::size_t>(std::llround(cubic_brick_ghosts(static_cast<double>(own_per_rank), per_m3, reach_m)));
@@ -155,11 +164,15 @@ int run(int argc, char** argv) {
     const double all = static_cast<double>(own_per_rank) * ranks;
     const RankStepCost cost = project_step(uniform_shares(ranks, own_per_rank, ghost_count),
                                            OneProcessStep{all, all / one_rate, builds_per_step}, cluster, traffic);
-    const double gather_s = project_gather_s(all, ranks, all / one_rate, cluster, traffic);
+    const double gather_s = project_gather_s(
+        all,
+        static_cast<double>(traffic.gathered_bytes_per_particle + 4) +
+            contacts / particles * static_cast<double>(traffic.bytes_per_history_entry),
+        ranks, all / one_rate, cluster);
     std::printf("%6d %12.0f %10.1f %9.1f %9.2f %9.2f %11.2f %6.2f %10.3g %16.0f %12.3g\n", ranks, all,
                 cost.step_s * 1e6, cost.compute_s * 1e6, cost.halo_s * 1e6, cost.build_s * 1e6,
                 cost.collectives_s * 1e6, cost.efficiency, gather_s, 9.0 * gather_s / cost.step_s,
-                all * static_cast<double>(traffic.gathered_bytes_per_particle) / 1e9);
+                all * static_cast<double>(traffic.gathered_bytes_per_particle) / 1e9);  // the fields alone
   }
   return 0;
 }

@@ -23,6 +23,20 @@ void for_each_bond_value(Store& bonds, std::size_t b, F&& f) {
 
 }  // namespace
 
+std::size_t bytes_per_bond() {
+  BondStore one;
+  std::size_t bytes = 0;
+  one.id_i.resize(1);
+  one.id_j.resize(1);
+  one.kind.resize(1);
+  one.rest_length_m.resize(1);
+  one.section.resize(1);
+  one.sequence.resize(1);
+  one.resize_state(1);
+  for_each_bond_value(one, 0, [&](const void*, std::size_t size) { bytes += size; });
+  return bytes;
+}
+
 void pack_bonds(const BondStore& bonds, std::span<const std::uint32_t> indices, std::vector<std::byte>& bytes) {
   const auto append = [&](const void* data, std::size_t size) {
     const std::size_t at = bytes.size();

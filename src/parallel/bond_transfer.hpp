@@ -12,6 +12,9 @@
 
 namespace regodem {
 
+/// The bytes one bond adds to a message.
+std::size_t bytes_per_bond();
+
 /// Appends to `bytes` the count of the bonds at `indices` of `bonds`, then each of them.
 void pack_bonds(const BondStore& bonds, std::span<const std::uint32_t> indices, std::vector<std::byte>& bytes);
 

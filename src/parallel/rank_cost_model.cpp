@@ -6,25 +6,30 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "contact/neighbor_list.hpp"
+#include "parallel/bond_transfer.hpp"
 #include "parallel/particle_transfer.hpp"
 
 namespace regodem {
 
-CodeTraffic code_traffic() {
+CodeTraffic code_traffic(bool bonds, bool removes_lost_particles) {
   CodeTraffic t;
   // Simulation::step over ranks: the vote on a rebuild (any_rank), the wall and heat
   // totals summed in rank order (a gather and a broadcast), the end-of-step agreement.
   t.collectives_per_step = 4;
   t.exchanges_per_step = 1;  // HaloExchange::refresh_ghosts
   // A build (Simulation::rebuild_neighbors, HaloExchange::redistribute), instead of the
-  // refresh: the busiest rank's work, the particle count, the agreements that no particle
-  // left the domain and no bond outreaches the ghosts (with lost particles removed, their
-  // books gathered besides); the migrants sent, then the new ghosts.
-  t.collectives_per_build = 5;
+  // refresh: 5 collectives (the particle count, the busiest rank's work, the agreement that
+  // no particle left its brick unowned, ...: measured by the test); with bonds the
+  // agreement that none outreaches the ghosts; with lost grains removed their books
+  // gathered (and their bonds' stored energy summed); the migrants sent, then the new ghosts.
+  t.collectives_per_build = 5 + (bonds ? 1 : 0) + (removes_lost_particles ? 2 + (bonds ? 2 : 0) : 0);
   t.exchanges_per_build = 2;
   t.refresh_bytes_per_ghost = bytes_per_particle(ParticleTransfer::ghost_refresh);
   t.new_ghost_bytes = bytes_per_particle(ParticleTransfer::ghost);
   t.gathered_bytes_per_particle = bytes_per_particle(ParticleTransfer::whole);
+  t.bytes_per_history_entry = sizeof(SavedContact);
+  t.bytes_per_bond = bytes_per_bond();
   return t;
 }
 
@@ -36,7 +41,8 @@ int collective_rounds(int ranks) {
 
 RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, std::span<const double> weights,
                            double reach_m, int ranks) {
-  if (ranks < 1) throw InputError(fmt::format("{} ranks: at least one", ranks));
+  if (ranks < 1 || ranks > kMostProjectedRanks)
+    throw InputError(fmt::format("{} ranks: from 1 to {}", ranks, kMostProjectedRanks));
   if (!weights.empty() && weights.size() != points.size())
     throw InputError(fmt::format("{} weights for {} points", weights.size(), points.size()));
   const RecursiveBisection bricks(domain, points, weights, ranks);
@@ -120,7 +126,8 @@ RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, c
     const double build_s =
         one.builds_per_step *
         ((traffic.exchanges_per_build - traffic.exchanges_per_step) * exchange_latency_s +
-         ghosts * static_cast<double>(traffic.new_ghost_bytes - traffic.refresh_bytes_per_ghost) / beta +
+         ghosts * (static_cast<double>(traffic.new_ghost_bytes) - static_cast<double>(traffic.refresh_bytes_per_ghost)) /
+             beta +
          traffic.collectives_per_build * rounds * alpha);
     const double total_s = compute_s + halo_s + build_s;
     if (total_s > slowest_s) {
@@ -144,12 +151,11 @@ RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, c
   return cost;
 }
 
-double project_gather_s(double particles, int ranks, double one_process_step_s, const NetworkModel& network,
-                        const CodeTraffic& traffic) {
+double project_gather_s(double particles, double bytes_per_particle, int ranks, double one_process_step_s,
+                        const NetworkModel& network) {
   if (ranks <= 1) return 0.0;
-  return collective_rounds(ranks) * network.latency_s +
-         particles * static_cast<double>(traffic.gathered_bytes_per_particle) / network.bandwidth_bytes_per_s +
-         one_process_step_s;
+  return 2.0 * collective_rounds(ranks) * network.latency_s +
+         particles * bytes_per_particle / network.bandwidth_bytes_per_s + one_process_step_s;
 }
 
 }  // namespace regodem

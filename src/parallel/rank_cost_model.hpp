@@ -27,18 +27,22 @@ struct NetworkModel {
 };
 
 /// What the code sends besides the ghosts' bytes, per step and per neighbour-list build
-/// (tests/mpi/test_communication_counts.cpp holds the run's Communicator tally to these).
+/// (tests/mpi/test_distributed_step.cpp, AStepSendsWhatTheCostModelCounts, holds a run's
+/// Communicator tally to these, without bonds and lost grains).
 struct CodeTraffic {
   int collectives_per_step = 0;   // latency-bound rounds over all ranks (agreements, sums)
   int exchanges_per_step = 0;     // ghost refreshes: an all-to-all of counts, then one message per partner
   int collectives_per_build = 0;  // besides a step's
   int exchanges_per_build = 0;    // migration and the new ghosts, in place of the step's refresh
-  std::size_t refresh_bytes_per_ghost = 0;  // positions, velocities, spins, temperatures
-  std::size_t new_ghost_bytes = 0;          // a ghost sent at a build
-  std::size_t gathered_bytes_per_particle = 0;  // a particle handed to every rank at a gather
+  std::size_t refresh_bytes_per_ghost = 0;  // positions, velocities, spins, temperatures, conductivities
+  std::size_t new_ghost_bytes = 0;          // a ghost's fields sent at a build (its contact history besides)
+  std::size_t gathered_bytes_per_particle = 0;  // a particle's fields handed to every rank at a gather
+  std::size_t bytes_per_history_entry = 0;      // a contact's history, sent with its owner
+  std::size_t bytes_per_bond = 0;               // a bond, sent with its ends
 };
-/// The traffic of this build of RegoDEM.
-CodeTraffic code_traffic();
+/// The traffic of this build of RegoDEM, for a run with bonds or not and removing the
+/// grains that leave its domain or not (each adds agreements to a build).
+CodeTraffic code_traffic(bool bonds = false, bool removes_lost_particles = false);
 
 /// The bed cut into `ranks` bricks: what each rank holds.
 struct RankShares {
@@ -80,10 +84,11 @@ RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, c
                           const CodeTraffic& traffic);
 
 /// A gather (every rank given every particle, where a run reads or adds particles:
-/// samples, measurements, snapshots, insertions): the all-gather of `particles`, then
-/// every rank's lists rebuilt over all of them, counted as one step of one process.
-double project_gather_s(double particles, int ranks, double one_process_step_s, const NetworkModel& network,
-                        const CodeTraffic& traffic);
+/// samples, measurements, snapshots, insertions): the all-gather (two collectives) of
+/// `particles` of `bytes_per_particle` each (fields, contact histories, bonds), then every
+/// rank's lists rebuilt over all of them, counted as one step of one process.
+double project_gather_s(double particles, double bytes_per_particle, int ranks, double one_process_step_s,
+                        const NetworkModel& network);
 
 /// Weak scaling: every rank holds an interior brick of a bed that grows with the ranks,
 /// `own` particles each, with `ghosts` from min(26, ranks - 1) partners (its face, edge and
@@ -94,6 +99,9 @@ RankShares uniform_shares(int ranks, std::size_t own, std::size_t ghosts);
 /// the shell within `reach_m` of it (the brick grown by a sphere: faces, rounded edges
 /// and corners).
 double cubic_brick_ghosts(double own, double particles_per_m3, double reach_m);
+
+/// The most ranks a projection cuts a bed into (its partner table is ranks^2 bytes).
+inline constexpr int kMostProjectedRanks = 16384;
 
 /// Rounds of a collective over `ranks`: ceil(log2 ranks), 0 for one.
 int collective_rounds(int ranks);

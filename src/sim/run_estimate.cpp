@@ -280,7 +280,7 @@ std::uint64_t planned_gathers(const Stage& stage, const StageCost& cost, const S
   for (const Measurement& m : plan.measurements.items) {
     gathers += periodic_events(m.schedule.periodic, stage, cost);
     for (const double t : m.schedule.at_times_s) gathers += t >= start_s && t < start_s + cost.simulated_s ? 1 : 0;
-    gathers += m.schedule.at_depths_m.size();
+    if (stage.ends_at_depth()) gathers += m.schedule.at_depths_m.size();  // as the periodic ones by depth
   }
   for (const Insertion& ins : plan.insertions)
     if (ins.stage == s)
@@ -297,7 +297,16 @@ void project_over_ranks(StageCost& cost, const Simulation& sim, const StagePlan&
                         const EstimateOptions& options) {
   if (!cost.sampled || cost.particle_steps_per_s <= 0.0) return;
   const Stage& stage = plan.stages[s];
-  const CodeTraffic traffic = code_traffic();
+  const CodeTraffic traffic =
+      code_traffic(sim.bonds_configured(), sim.settings().lost_particles == LostParticles::remove);
+  // A gathered particle: its fields, its contact count and contact histories, its bonds.
+  const double n = static_cast<double>(sim.particles.size());
+  const ContactStatistics& contacts = sim.contact_statistics();
+  const double gathered_bytes_per_particle =
+      static_cast<double>(traffic.gathered_bytes_per_particle + sizeof(std::uint32_t)) +
+      static_cast<double>(contacts.particle_contacts + contacts.wall_contacts) / n *
+          static_cast<double>(traffic.bytes_per_history_entry) +
+      static_cast<double>(sim.bonds().size()) / n * static_cast<double>(traffic.bytes_per_bond);
   OneProcessStep one;
   one.particles = static_cast<double>(cost.particles);
   one.step_s = one.particles / cost.particle_steps_per_s;
@@ -318,7 +327,7 @@ void project_over_ranks(StageCost& cost, const Simulation& sim, const StagePlan&
       const RankShares shares = cut_into_bricks(Brick{domain.min_m, domain.max_m}, sim.particles.position_m, work,
                                                 sim.ghost_reach_m(largest_radius_m), ranks);
       over.step = project_step(shares, one, options.network, traffic);
-      over.gather_s = project_gather_s(one.particles, ranks, one.step_s, options.network, traffic);
+      over.gather_s = project_gather_s(one.particles, gathered_bytes_per_particle, ranks, one.step_s, options.network);
       over.predicted_wall_s =
           static_cast<double>(cost.steps) * over.step.step_s + static_cast<double>(gathers) * over.gather_s;
     }

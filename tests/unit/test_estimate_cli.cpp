@@ -47,7 +47,7 @@ TEST(EstimateCli, DemoPrintsATotalAndWritesJson) {
 
 // --ranks projects the run onto MPI ranks (src/parallel/rank_cost_model.hpp): one rank is
 // the one process's prediction; two share the bed across one cut, each with the other's
-// nearest grains as ghosts; the static bed is stepped gathered, as one process.
+// nearest grains as ghosts.
 TEST(EstimateCli, RanksProjectTheRunOntoBricks) {
   const fs::path dir = fresh_directory("ranks");
   const Finished done = run_regodem({"estimate", kDemo, "--threads", "1", "--sample-steps", "20", "--sample-seconds",
@@ -71,8 +71,6 @@ TEST(EstimateCli, RanksProjectTheRunOntoBricks) {
   EXPECT_LT(two["efficiency"].get<double>(), 1.0);
   // The 25 samples (every 0.01 s of the 0.25 s fill), the end, and the two pours' attempts.
   EXPECT_GT(two["gathers_at_most"].get<int>(), 26);
-  const nlohmann::json& heat = json["stages"][2];
-  EXPECT_EQ(heat["over_ranks"][1]["predicted_wall_s"].get<double>(), heat["predicted_wall_s"].get<double>());
   ASSERT_EQ(json["total"]["over_ranks"].size(), 2u);
   EXPECT_EQ(json["network"]["latency_s"].get<double>(), 2e-6);
 }

@@ -54,7 +54,7 @@ TEST(RankCostModel, OneRankIsOneProcess) {
   const RankStepCost cost = project_step(cut_into_bricks(cube, points, {}, 0.6 * d, 1), one, NetworkModel{}, code_traffic());
   EXPECT_EQ(cost.step_s, 1e-3);
   EXPECT_EQ(cost.efficiency, 1.0);
-  EXPECT_EQ(project_gather_s(1000.0, 1, 1e-3, NetworkModel{}, code_traffic()), 0.0);
+  EXPECT_EQ(project_gather_s(1000.0, 200.0, 1, 1e-3, NetworkModel{}), 0.0);
 }
 
 TEST(RankCostModel, AFreeNetworkLeavesTheGhostsWork) {
@@ -101,6 +101,28 @@ TEST(RankCostModel, UniformSharesStepEveryRanksOwnAndGhosts) {
   // 64 ranks of 1,000 particles: one process would step 64,000 in 64 ms.
   const RankStepCost cost = project_step(shares, OneProcessStep{64000.0, 64e-3, 0.0}, free, code_traffic());
   EXPECT_NEAR(cost.step_s, 1.5e-3, 1e-15);
+}
+
+// Two bricks of the lattice (500 own grains, 100 ghosts, 1 partner each) on a network of
+// 1 us and 1 GB/s, one process stepping the 1,000 grains in 1 ms, no builds; by hand:
+// compute 1 ms x 600/1000 = 600 us; the refresh: the all-to-all of counts (1 round, 1 us,
+// 4 x 2 x 1 bytes = 0.008 us) and one message (1 us), the ghosts' 100 x 88 B = 8.8 us;
+// 4 collectives of 1 round, 4 us. A gather of the 1,000 grains at 300 B each: 2 rounds
+// (2 us), 300 us of bytes, and the one-process step (1 ms).
+TEST(RankCostModel, AFiniteNetworkAddsTheHaloAndTheCollectivesByHand) {
+  const std::vector<Vec3> points = lattice();
+  NetworkModel network;
+  network.latency_s = 1e-6;
+  network.bandwidth_bytes_per_s = 1e9;
+  const CodeTraffic traffic = code_traffic();
+  ASSERT_EQ(traffic.refresh_bytes_per_ghost, 88u);  // 3 vectors and 2 scalars of doubles
+  const RankStepCost cost =
+      project_step(cut_into_bricks(cube, points, {}, 0.6 * d, 2), OneProcessStep{1000.0, 1e-3, 0.0}, network, traffic);
+  EXPECT_NEAR(cost.compute_s, 600e-6, 1e-15);
+  EXPECT_NEAR(cost.halo_s, 1e-6 + 0.008e-6 + 1e-6 + 8.8e-6, 1e-15);
+  EXPECT_NEAR(cost.collectives_s, 4e-6, 1e-15);
+  EXPECT_NEAR(cost.step_s, 600e-6 + 10.808e-6 + 4e-6, 1e-15);
+  EXPECT_NEAR(project_gather_s(1000.0, 300.0, 2, 1e-3, network), 2e-6 + 300e-6 + 1e-3, 1e-15);
 }
 
 TEST(RankCostModel, ACollectiveTakesLog2RanksRounds) {

@@ -211,11 +211,7 @@ int calibrate(const CalibrateOptions& options) {
   const CalibrationSpec spec = read_calibration_file(options.calibration_path);
   const RunLauncher launcher =
       RunLauncher::from(options.ranks_per_run > 0 ? options.ranks_per_run : spec.ranks_per_run, options.mpirun);
-  const int processes =
-      options.processes > 0 ? options.processes
-      : spec.processes > 0  ? spec.processes
-                            : std::max(1, static_cast<int>(std::thread::hardware_concurrency()) /
-                                              (spec.threads_per_run * launcher.ranks));
+  const int processes = launcher.processes(options.processes, spec.processes, spec.threads_per_run);
   const fs::path output =
       fs::absolute(options.output_directory.empty() ? fs::path("out") / fs::path(options.calibration_path).stem()
                                                     : fs::path(options.output_directory))

@@ -7,6 +7,7 @@
 #include <iterator>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -159,6 +160,12 @@ std::string RunLauncher::description() const {
   std::string command;
   for (const std::string& word : mpirun) command += (command.empty() ? "" : " ") + word;
   return fmt::format(", over {} MPI ranks ({} -np {})", ranks, command, ranks);
+}
+
+int RunLauncher::processes(int option, int file, int threads_per_run) const {
+  if (option > 0) return option;
+  if (file > 0) return file;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / (threads_per_run * ranks));
 }
 
 RunBatches::RunBatches(fs::path output, int processes, int threads_per_run, RunLauncher launcher, int total_runs,

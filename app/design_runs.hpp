@@ -67,6 +67,8 @@ struct RunLauncher {
   static RunLauncher from(int ranks, const std::string& mpirun_command);
   /// ", over N MPI ranks (mpirun ...)" for a progress line; empty for one.
   std::string description() const;
+  /// Runs at once: `option` or else `file`, when given (> 0); else the cores / (threads x ranks).
+  int processes(int option, int file, int threads_per_run) const;
 };
 
 /// Runs, skips and reports batches of runs; keeps the progress count across batches.

@@ -21,11 +21,9 @@ void for_each_bond_value(Store& bonds, std::size_t b, F&& f) {
   for (auto& row : bonds.state) f(&row[b], sizeof(double));
 }
 
-}  // namespace
-
-std::size_t bytes_per_bond() {
+/// A store of one bond, every field in place: what a bond is read into, or measured by.
+BondStore one_bond() {
   BondStore one;
-  std::size_t bytes = 0;
   one.id_i.resize(1);
   one.id_j.resize(1);
   one.kind.resize(1);
@@ -33,6 +31,14 @@ std::size_t bytes_per_bond() {
   one.section.resize(1);
   one.sequence.resize(1);
   one.resize_state(1);
+  return one;
+}
+
+}  // namespace
+
+std::size_t bytes_per_bond() {
+  BondStore one = one_bond();
+  std::size_t bytes = 0;
   for_each_bond_value(one, 0, [&](const void*, std::size_t size) { bytes += size; });
   return bytes;
 }
@@ -58,14 +64,7 @@ std::size_t unpack_bonds(std::span<const std::byte> bytes, BondStore& bonds) {
   };
   std::uint64_t count = 0;
   take(&count, sizeof count);
-  BondStore one;
-  one.id_i.resize(1);
-  one.id_j.resize(1);
-  one.kind.resize(1);
-  one.rest_length_m.resize(1);
-  one.section.resize(1);
-  one.sequence.resize(1);
-  one.resize_state(1);
+  BondStore one = one_bond();
   for (std::uint64_t k = 0; k < count; ++k) {
     for_each_bond_value(one, 0, take);
     bonds.append_from(one, 0);

@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <limits>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>

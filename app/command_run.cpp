@@ -42,7 +42,10 @@ int execute(const RunOptions& requested, const ResumePoint* resume) {
   std::optional<RunRanks> ranks;
   std::unique_ptr<RunSession> session;
   try {
-    if (started_as_mpi_rank()) ranks.emplace();
+    if (started_as_mpi_rank()) {
+      ranks.emplace();
+      options.mpi_ranks = ranks->size();
+    }
     const bool writer = !ranks || ranks->rank() == 0;
     // Under MPI a setup error of any rank stops every rank, with the first one's message:
     // once the scenario is built (before rank 0 clears the directory) and once begun.

@@ -28,6 +28,7 @@ struct RunOptions {
   std::vector<std::string> overrides;  // key.path=value
   bool overwrite = false;
   double checkpoint_every_s = 0.0;  // wall clock; 0: only at stage ends and on Ctrl-C
+  int mpi_ranks = 1;                // the ranks the run is split over (set under mpirun, for summary.json)
 };
 
 /// `regodem resume` (command_resume.cpp).

@@ -48,8 +48,7 @@ void RunRanks::take(Simulation& sim) {
   const Brick domain{settings.domain.min_m, settings.domain.max_m};
   // Every rank holds the same particles (none yet, or a checkpoint's): the first build
   // keeps each brick's, and the bricks follow the work from the next.
-  const double largest_radius_m = std::max(settings.max_particle_radius_m, settings.min_particle_radius_m);
-  impl_->halo.emplace(*impl_->comm, RecursiveBisection(domain, {}, {}, size()), sim.ghost_reach_m(largest_radius_m),
+  impl_->halo.emplace(*impl_->comm, RecursiveBisection(domain, {}, {}, size()), sim.ghost_skin_m(),
                       HaloExchange::Start::replicated);
   sim.start_gathered(&*impl_->halo);
 }

@@ -154,6 +154,7 @@ RunSummary make_summary(const RunEnding& ending, const ScenarioSpec& spec, const
   summary.particle_steps_per_s = outcome.particle_steps_per_s;
   summary.time_step_s = prepared.time_step_s();
   summary.threads = prepared.threads();
+  summary.mpi_ranks = options.mpi_ranks;
   summary.version = build_info::version;
   summary.build_type = build_info::build_type;
   summary.compiler = build_info::compiler;

@@ -54,7 +54,7 @@ int run(int argc, char** argv) {
         comm,
         RecursiveBisection(Brick{settings.domain.min_m, settings.domain.max_m}, sim.particles.position_m, {},
                            comm.size()),
-        sim.ghost_reach_m(settings.max_particle_radius_m), HaloExchange::Start::replicated);
+        sim.ghost_skin_m(), HaloExchange::Start::replicated);
     sim.distribute(halo.get());
   }
   const std::uint64_t rebuilds_before = sim.neighbor_list().rebuild_count();

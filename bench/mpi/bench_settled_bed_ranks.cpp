@@ -74,7 +74,7 @@ int run(int argc, char** argv) {
     const Domain& domain = sim.settings().domain;
     halo = std::make_unique<HaloExchange>(
         comm, RecursiveBisection(Brick{domain.min_m, domain.max_m}, sim.particles.position_m, {}, comm.size()),
-        sim.ghost_reach_m(kRadius), HaloExchange::Start::replicated);
+        sim.ghost_skin_m(), HaloExchange::Start::replicated);
     sim.distribute(halo.get());
   }
   sim.advance(1000);
@@ -122,19 +122,21 @@ int run(int argc, char** argv) {
   const CodeTraffic traffic = code_traffic();
   const double particles = static_cast<double>(total);
   const double builds_per_step = static_cast<double>(rebuilds) * per_step;
-  const double reach_m = sim.ghost_reach_m(kRadius);
+  const double skin_m = sim.ghost_skin_m(), reach_m = 2.0 * kRadius + skin_m;  // one size: every grain's reach
   // The check: this run's step predicted from one process's rate, the bricks cut as the
   // run cut them (on the bed it read, unweighted).
   std::vector<Vec3> points;
+  std::vector<double> radii;
   double low_m = bed.front().position_m.z, high_m = low_m;
   for (const ParticleRecord& r : bed) {
     points.push_back(r.position_m);
+    radii.push_back(r.radius_m);
     low_m = std::min(low_m, r.position_m.z);
     high_m = std::max(high_m, r.position_m.z);
   }
   const Domain& domain = sim.settings().domain;
   const RankStepCost check =
-      project_step(cut_into_bricks(Brick{domain.min_m, domain.max_m}, points, {}, reach_m, comm.size()),
+      project_step(cut_into_bricks(Brick{domain.min_m, domain.max_m}, points, radii, {}, skin_m, comm.size()),
                    OneProcessStep{particles, particles / one_rate, builds_per_step}, here, traffic);
   std::printf("model, %d ranks here (one process %.4g particle-steps/s, latency %.3g us, %.3g GB/s): step %.1f us "
               "(compute %.1f, halo %.2f, builds %.2f, collectives %.2f), %.4g particle-steps/s; measured %.1f us, "

@@ -117,7 +117,8 @@ void NeighborList::restore_history(const ParticleStore& particles, int threads) 
 }
 
 void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid,
-                           const NeighborSkin& skin, int threads, bool history_saved) {
+                           const NeighborSkin& skin, int threads, bool history_saved,
+                           std::vector<std::uint8_t>* ghost_flags) {
   if (!history_saved) save_history(particles);
   const std::size_t n = particles.size();
 
@@ -148,7 +149,15 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
       for (std::size_t b = a; b > 0 && same_cell(order[b - 1], order[b]) && ids[order[b - 1]] > ids[order[b]]; --b)
         std::swap(order[b - 1], order[b]);
     particles.permute(order);
+    if (ghost_flags) {
+      std::vector<std::uint8_t> sorted(n);
+      for (std::size_t i = 0; i < n; ++i) sorted[i] = (*ghost_flags)[order[i]];
+      *ghost_flags = std::move(sorted);
+    }
   }
+  // 1 for a ghost (null: none); a pair of two ghosts is no pair here.
+  const std::uint8_t* const ghost = ghost_flags && !ghost_flags->empty() ? ghost_flags->data() : nullptr;
+  const auto both_ghosts = [ghost](std::size_t a, std::size_t b) { return ghost && ghost[a] && ghost[b]; };
 
   // Each particle's and each wall body's half of the skin (NeighborSkin).
   const double slow_half = 0.5 * skin.skin_m, most_half = slow_half * std::max(1.0, skin.max_half_skin_factor);
@@ -220,7 +229,7 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
       thin_walls_of(f, thin_walls);
       const double reach_m = radius[f] + largest_radius + half[f] + largest_fast_half;
       for_each_particle_near(grid, x[f], reach_m, [&](std::uint32_t k) {
-        if (k == f || !owns_pair(radius[k], id[k], radius[f], id[f])) return;
+        if (k == f || !owns_pair(radius[k], id[k], radius[f], id[f]) || both_ghosts(k, f)) return;
         const double cutoff = radius[k] + radius[f] + half[k] + half[f];
         if (norm2(x[k] - x[f]) < cutoff * cutoff && !blocked_by(thin_walls, f, k)) fast_pairs_.emplace_back(k, f);
       });
@@ -256,21 +265,26 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     mesh_triangles.clear();
     for (std::size_t i = begin; i < end; ++i) {
       const double ri = radius[i], hi = half[i];
+      const bool ghost_i = ghost && ghost[i];
       // Walls first: a pair that touches through a thin wall (a sieve) is no pair.
       const std::size_t first_wall = wall_hits.size();
-      thin_walls.clear();
-      for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
-        const WallPrimitive& wall = walls.primitives[w];
-        const WallProximity p = closest_wall_point(wall, x[i]);
-        if (p.candidate && p.distance_m < ri + hi + body_half_skin_m_[wall.body]) {
-          wall_hits.push_back(w);
-          if (wall.shape != PrimitiveShape::plane) thin_walls.push_back(w);
+      if (ghost_i) {
+        thin_walls_of(i, thin_walls);  // they still block its pairs; its wall contacts are its own rank's
+      } else {
+        thin_walls.clear();
+        for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
+          const WallPrimitive& wall = walls.primitives[w];
+          const WallProximity p = closest_wall_point(wall, x[i]);
+          if (p.candidate && p.distance_m < ri + hi + body_half_skin_m_[wall.body]) {
+            wall_hits.push_back(w);
+            if (wall.shape != PrimitiveShape::plane) thin_walls.push_back(w);
+          }
         }
       }
       wall_offset[i + 1] = static_cast<std::uint32_t>(wall_hits.size() - first_wall);
       // Mesh triangles within reach, found through each mesh's grid in its reference frame.
       const std::size_t first_mesh_entry = mesh_triangles.size();
-      for (std::uint32_t m = 0; m < walls.meshes.size(); ++m) {
+      for (std::uint32_t m = 0; !ghost_i && m < walls.meshes.size(); ++m) {
         const MeshWall& mesh = walls.meshes[m];
         const Vec3 local = walls.bodies[mesh.body].pose.to_reference(x[i]);
         const double reach = ri + hi + body_half_skin_m_[mesh.body];
@@ -291,7 +305,7 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
       // Slow partners no larger than the owner, within R_i + R_j + h_i + skin/2.
       const std::size_t first = partners.size();
       for_each_particle_near(grid, x[i], 2.0 * ri + hi + slow_half, [&](std::uint32_t j) {
-        if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j])) return;
+        if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j]) || (ghost_i && ghost[j])) return;
         const double cutoff = ri + radius[j] + hi + slow_half;
         if (norm2(x[j] - x[i]) < cutoff * cutoff && !blocked_by(thin_walls, i, j)) partners.push_back(j);
       });

@@ -113,9 +113,13 @@ class NeighborList {
 
   /// Sorts the particles by cell, rebuilds both lists and carries the contact history.
   /// history_saved: save_history() was called before the particles changed (removal),
-  /// so the old lists no longer index them.
+  /// so the old lists no longer index them. ghost: under MPI, one flag per particle for
+  /// the copies of other ranks' particles (issue 19); the flags follow the sort, and the
+  /// lists leave out what no rank computes here: pairs of two ghosts, and a ghost's walls
+  /// and mesh triangles (its own rank's). A ghost still blocks nothing and is blocked by
+  /// the thin walls near it, as its own rank sees it.
   void rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid, const NeighborSkin& skin,
-               int threads, bool history_saved = false);
+               int threads, bool history_saved = false, std::vector<std::uint8_t>* ghost = nullptr);
 
   /// Splits the owners between threads by estimated work, at block boundaries (after a
   /// build, or a restore for another thread count).

@@ -133,6 +133,7 @@ nlohmann::ordered_json summary_to_json(const RunSummary& summary) {
   json["particle_steps_per_s"] = number_or_null(summary.particle_steps_per_s);
   json["time_step_s"] = number_or_null(summary.time_step_s);
   json["threads"] = summary.threads;
+  json["mpi_ranks"] = summary.mpi_ranks;
   json["version"] = summary.version;
   json["build_type"] = summary.build_type;
   json["compiler"] = summary.compiler;

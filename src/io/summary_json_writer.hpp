@@ -101,7 +101,8 @@ struct RunSummary {
   double wall_time_s = 0.0;
   double particle_steps_per_s = 0.0;
   double time_step_s = 0.0;
-  int threads = 1;
+  int threads = 1;    // OpenMP threads of each process
+  int mpi_ranks = 1;  // the processes a run over MPI is split over
   std::string version;
   std::string build_type;
   std::string compiler;

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "contact/neighbor_list.hpp"
 #include "parallel/bond_transfer.hpp"
+#include "parallel/ghost_reach.hpp"
 #include "parallel/particle_transfer.hpp"
 
 namespace regodem {
@@ -19,11 +20,12 @@ CodeTraffic code_traffic(bool bonds, bool removes_lost_particles) {
   t.collectives_per_step = 4;
   t.exchanges_per_step = 1;  // HaloExchange::refresh_ghosts
   // A build (Simulation::rebuild_neighbors, HaloExchange::redistribute), instead of the
-  // refresh: 5 collectives (the particle count, the busiest rank's work, the agreement that
-  // no particle left its brick unowned, ...: measured by the test); with bonds the
+  // refresh: 6 collectives (the particle count, the busiest rank's work, the agreement that
+  // no particle left its brick unowned, every rank's largest radius for the ghosts' reach,
+  // ...: measured by the test); with bonds the
   // agreement that none outreaches the ghosts; with lost grains removed their books
   // gathered (and their bonds' stored energy summed); the migrants sent, then the new ghosts.
-  t.collectives_per_build = 5 + (bonds ? 1 : 0) + (removes_lost_particles ? 2 + (bonds ? 2 : 0) : 0);
+  t.collectives_per_build = 6 + (bonds ? 1 : 0) + (removes_lost_particles ? 2 + (bonds ? 2 : 0) : 0);
   t.exchanges_per_build = 2;
   t.refresh_bytes_per_ghost = bytes_per_particle(ParticleTransfer::ghost_refresh);
   t.new_ghost_bytes = bytes_per_particle(ParticleTransfer::ghost);
@@ -39,13 +41,16 @@ int collective_rounds(int ranks) {
   return rounds;
 }
 
-RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, std::span<const double> weights,
-                           double reach_m, int ranks) {
+RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, std::span<const double> radii_m,
+                           std::span<const double> weights, double skin_m, int ranks) {
   if (ranks < 1 || ranks > kMostProjectedRanks)
     throw InputError(fmt::format("{} ranks: from 1 to {}", ranks, kMostProjectedRanks));
   if (!weights.empty() && weights.size() != points.size())
     throw InputError(fmt::format("{} weights for {} points", weights.size(), points.size()));
+  if (radii_m.size() != points.size())
+    throw InputError(fmt::format("{} radii for {} points", radii_m.size(), points.size()));
   const RecursiveBisection bricks(domain, points, weights, ranks);
+  const GhostReach reach{skin_m, largest_radius_by_brick(bricks, points, radii_m)};
   const auto n = static_cast<std::size_t>(ranks);
   RankShares shares;
   shares.ranks = ranks;
@@ -62,7 +67,7 @@ RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, st
     shares.own_work[owner] += w;
     shares.total_work += w;
     for (std::size_t r = 0; r < n; ++r) {
-      if (r == owner || bricks.brick(static_cast<int>(r)).distance_m(points[p]) > reach_m) continue;
+      if (r == owner || !reach.wanted(bricks, static_cast<int>(r), points[p], radii_m[p])) continue;
       ++shares.ghosts[r];
       shares.ghost_work[r] += w;
       hears_from[r * n + owner] = 1;

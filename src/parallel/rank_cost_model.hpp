@@ -3,7 +3,7 @@
 // scaling projection of docs/benchmarks.md), from what one process measured and from
 // what the code sends. The bed is cut as a run cuts it (RecursiveBisection, weighted by
 // work); each brick's own particles and ghosts (the other bricks' particles within the
-// ghost reach, as HaloExchange sends them) give its compute; its ghosts' bytes and the
+// ghost reach, as HaloExchange sends them: GhostReach) give its compute; its ghosts' bytes and the
 // ranks it hears from give its messages; the collectives every step takes give the
 // latency that grows with log2 N. A step lasts as long as its slowest rank, since every
 // step ends in a collective.
@@ -53,11 +53,11 @@ struct RankShares {
   std::vector<int> partners;               // the ranks whose particles it holds as ghosts
 };
 
-/// Cuts `domain` over `points` weighted by `weights` (empty: 1 each) as a run does, and
-/// counts each rank's own particles and ghosts (another brick's particles within
-/// `reach_m` of its brick).
-RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, std::span<const double> weights,
-                           double reach_m, int ranks);
+/// Cuts `domain` over `points` (of radii `radii_m`) weighted by `weights` (empty: 1 each)
+/// as a run does, and counts each rank's own particles and ghosts (the other bricks'
+/// particles its brick wants: GhostReach, for a pair skin of `skin_m`).
+RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, std::span<const double> radii_m,
+                           std::span<const double> weights, double skin_m, int ranks);
 
 /// What one process measured of the stepping to project.
 struct OneProcessStep {

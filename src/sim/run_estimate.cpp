@@ -311,8 +311,6 @@ void project_over_ranks(StageCost& cost, const Simulation& sim, const StagePlan&
   one.particles = static_cast<double>(cost.particles);
   one.step_s = one.particles / cost.particle_steps_per_s;
   one.builds_per_step = cost.builds_per_step;
-  double largest_radius_m = sim.settings().max_particle_radius_m;
-  for (const double r : sim.particles.radius_m) largest_radius_m = std::max(largest_radius_m, r);
   const Domain& domain = sim.settings().domain;
   const std::vector<double> work = sim.particle_work();
   const std::uint64_t gathers = planned_gathers(stage, cost, plan, s, start_s);
@@ -324,8 +322,8 @@ void project_over_ranks(StageCost& cost, const Simulation& sim, const StagePlan&
       over.step.efficiency = 1.0 / ranks;
       over.predicted_wall_s = cost.predicted_wall_s;
     } else {
-      const RankShares shares = cut_into_bricks(Brick{domain.min_m, domain.max_m}, sim.particles.position_m, work,
-                                                sim.ghost_reach_m(largest_radius_m), ranks);
+      const RankShares shares = cut_into_bricks(Brick{domain.min_m, domain.max_m}, sim.particles.position_m,
+                                                sim.particles.radius_m, work, sim.ghost_skin_m(), ranks);
       over.step = project_step(shares, one, options.network, traffic);
       over.gather_s = project_gather_s(one.particles, gathered_bytes_per_particle, ranks, one.step_s, options.network);
       over.predicted_wall_s =

@@ -174,15 +174,9 @@ void Simulation::rebuild_neighbors(bool history_saved) {
   NeighborSkin skin(settings_.neighbor_skin_m);
   skin.time_step_s = settings_.time_step_s;
   skin.body_step_m = walls.surface_steps_m(time_s_, settings_.time_step_s);
-  neighbors_.rebuild(particles, walls, grid_, skin, active_threads_, history_saved);
+  neighbors_.rebuild(particles, walls, grid_, skin, active_threads_, history_saved, halo_ ? &ghost_ : nullptr);
   walls.mark_neighbor_build();
-  if (halo_) {  // the ghost flags and the halo's lists follow the sort
-    const std::vector<std::uint32_t>& order = neighbors_.sort_order();
-    std::vector<std::uint8_t> sorted(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = ghost_[order[i]];
-    ghost_ = std::move(sorted);
-    halo_->follow_sort(order);
-  }
+  if (halo_) halo_->follow_sort(neighbors_.sort_order());  // the ghost flags followed it in the rebuild
   if (!bonds_.empty()) {  // the rebuild re-sorted the particles
     const std::vector<std::uint32_t>& order = neighbors_.sort_order();
     std::vector<std::uint32_t> new_index_of_old(order.size());
@@ -677,8 +671,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const WallContactHeat* wall_heat = wall_contact_heat_.data();
 
   // Under MPI a ghost owner's contacts count only for its partners of this rank: its
-  // contacts with ghosts and walls are its own rank's, and so are its pairs' energies and
-  // counts (each contact is then counted once over the ranks).
+  // contacts with ghosts and walls are its own rank's (the lists leave them out), and so
+  // are its pairs' energies and counts (each contact is then counted once over the ranks).
   const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
 
   // Pass 1, each thread over its owners: every contact's action on the owner is summed
@@ -722,7 +716,6 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 
       for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
         const std::uint32_t j = partner[k];
-        if (ghost_i && ghost[j]) continue;
         const Vec3 d = x[j] - xi;
         const double rj = radius[j];
         const double sum_r = ri + rj;
@@ -878,8 +871,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             cross(contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
       };
 
-      const std::uint32_t wall_end = ghost_i ? wall_offset[i] : wall_offset[i + 1];
-      for (std::uint32_t k = wall_offset[i]; k < wall_end; ++k) {
+      for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k) {  // none for a ghost
         const WallPrimitive& wall = primitives[wall_primitive[k]];
         const WallProximity prox = closest_wall_point(wall, xi);
         if (!prox.candidate || prox.distance_m >= ri) {
@@ -902,7 +894,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       // Mesh walls: the entries of one mesh form a run; its touches are counted once
       // per face, edge or vertex (MeshTouchFinder). Most particles have none: the test
       // saves the call (1 % of the pass in a profile).
-      if (!ghost_i && neighbors_.mesh_offset[i] != neighbors_.mesh_offset[i + 1]) {
+      if (neighbors_.mesh_offset[i] != neighbors_.mesh_offset[i + 1]) {  // never for a ghost
         for_each_mesh_run(neighbors_, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
           const MeshWall& mesh = meshes[wall_index];
           finder.find(mesh, bodies[mesh.body].pose, mesh_triangle + g, g_end - g, xi, ri, touches);

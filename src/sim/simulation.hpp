@@ -240,9 +240,10 @@ class Simulation {
   std::vector<double> particle_work() const;
   /// Whether the particle at index i is another rank's (a ghost).
   bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
-  /// How far from its brick a rank needs the other ranks' particles, for particles no
-  /// larger than largest_radius_m: the farthest the lists pair two particles.
-  double ghost_reach_m(double largest_radius_m) const;
+  /// What the lists' skin adds, at most, to the two radii of a pair they list: a rank
+  /// wants another's particle as a ghost within its radius, the brick's largest and this
+  /// of its brick (GhostReach).
+  double ghost_skin_m() const;
   /// A run over MPI whose every rank built this simulation the same (the same particles):
   /// it starts gathered (gather_everywhere), and its first step splits it (`halo` made
   /// with HaloExchange::Start::replicated, outliving this). The same refusals as distribute().

@@ -138,13 +138,12 @@ std::size_t Simulation::own_particle_count() const {
   return particles.size() - static_cast<std::size_t>(std::count(ghost_.begin(), ghost_.end(), std::uint8_t{1}));
 }
 
-double Simulation::ghost_reach_m(double largest_radius_m) const {
+double Simulation::ghost_skin_m() const {
   // A pair is listed within R_i + R_j + h_i + h_j, each half h at most
   // max_half_skin_factor x skin/2 (NeighborSkin); a particle of the brick is inside it at
   // the build, and until the next build no pair closes that was not listed.
   const NeighborSkin skin(settings_.neighbor_skin_m);
-  const double largest_half_m = 0.5 * skin.skin_m * std::max(1.0, skin.max_half_skin_factor);
-  return 2.0 * largest_radius_m + 2.0 * largest_half_m;
+  return skin.skin_m * std::max(1.0, skin.max_half_skin_factor);
 }
 
 bool Simulation::rebuild_everywhere(bool here, const std::exception_ptr& failed) {
@@ -181,9 +180,9 @@ void Simulation::redistribute_particles() {
     std::exception_ptr stretched;
     if (const std::size_t b = bonds_.refresh_indices(particles); b < bonds_.size())
       stretched = std::make_exception_ptr(SimulationError(fmt::format(
-          "the bond between particles {} and {} reaches farther than the ghosts ({:.4g} m from a rank's brick): its "
-          "ends are more than two radii and the skin apart, which an intact bond should not be",
-          bonds_.id_i[b], bonds_.id_j[b], ghost_reach_m(settings_.max_particle_radius_m))));
+          "the bond between particles {} and {} reaches farther than the ghosts (its radii and {:.4g} m from a rank's "
+          "brick): its ends are more than their radii and the skin apart, which an intact bond should not be",
+          bonds_.id_i[b], bonds_.id_j[b], ghost_skin_m())));
     halo_->agree(stretched);
   }
 }

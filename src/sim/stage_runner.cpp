@@ -432,6 +432,16 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       observer.checkpoint(RunState{sim, plan, at, rng, snapshots, reason, &measurements});
     };
 
+    // The run's fastest impact is said once, when it first goes unresolved. Under MPI a
+    // rank's impacts reach the others (and rank 0, which writes) at the next gather, so
+    // the check runs after each gather as well as after each step.
+    bool impact_noticed = !impacts_resolved(sim);
+    const auto notice_unresolved_impact = [&] {
+      if (impact_noticed || impacts_resolved(sim)) return;
+      observer.notice(unresolved_impact_notice(sim, stage.name));
+      impact_noticed = true;
+    };
+
     if (result == StageResult::finished) try {
       for (;;) {
         // Under MPI: the clock's decisions taken by all ranks at once, and the particles
@@ -452,7 +462,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
                                  (stage.ends_on_measurement() && done % check_every == 0);
           for (const Insertion* ins : active)
             reads_particles = reads_particles || (!ins->finished && sim.time_s() + 0.5 * dt >= ins->next_attempt_s());
-          if (reads_particles) sim.gather_everywhere();
+          if (reads_particles) {
+            sim.gather_everywhere();
+            notice_unresolved_impact();
+          }
           // Bonds broken on any rank since the split, now every rank's (in one order).
           if (!sim.distributed() && sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
         }
@@ -572,11 +585,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           frozen->advance(std::min(step_s, remaining_s));
         } else {
           observer.before_step(sim);
-          const bool resolved_before = impacts_resolved(sim);
           sim.distribute_again();
           sim.step();
           if (!sim.distributed() && sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
-          if (resolved_before && !impacts_resolved(sim)) observer.notice(unresolved_impact_notice(sim, stage.name));
+          notice_unresolved_impact();
         }
         ++done;
         snapshots.count_step();
@@ -588,6 +600,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       failure = fmt::format("stage '{}' failed: {}", stage.name, e.what());
     }
     sim.gather_everywhere();  // the stage's end reads the particles (under MPI)
+    notice_unresolved_impact();
     if (sim.bond_breaks_pending()) observer.bonds_broken(sim.take_bond_breaks());
     if (result == StageResult::finished) {
       if (last_sampled_time_s != sim.time_s()) sample();

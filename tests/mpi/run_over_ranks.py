@@ -81,6 +81,10 @@ def rows(path):
     return table[0], table[1:]
 
 
+def unresolved_impact_noticed(run):
+    return any("a Hertz contact of" in n for n in json.loads((run / "summary.json").read_text()).get("notices", []))
+
+
 def compare_runs(reference, other, label):
     for folder in ("regions", "profiles"):
         if not (reference / folder).exists():
@@ -123,6 +127,8 @@ for ranks in (1, 2, 3):
     check(len(lines) == 1 and lines[0].startswith("regodem: completed 2 stages"),
           f"{ranks} ranks: stdout is {result.stdout!r} (one final line, from rank 0 alone)")
     runs[ranks] = out
+    recorded = json.loads((out / "summary.json").read_text()).get("mpi_ranks")
+    check(recorded == ranks, f"{ranks} ranks: summary.json says mpi_ranks {recorded}")
     header, table = rows(out / "time_series.csv")
     column = header.index("energy_imbalance [-]")
     worst = max(abs(float(r[column])) for r in table)
@@ -156,8 +162,11 @@ drills = run_on_ranks("drill", REPOSITORY / "scenarios/paper/tiny/drill-sieve.ya
                       "--set", "output={interval: 0.01 s, snapshots: {every_steps: 400}}")
 broken = last_value(drills[1], "bonds_broken [-]")
 check(broken >= 50, f"the drill broke {broken:.0f} bonds, too few to test their breaks over ranks")
+check(unresolved_impact_noticed(drills[1]), "the tiny drill: one process gave no unresolved-impact notice")
 for ranks in (2, 3):
     compare_runs(drills[1], drills[ranks], f"drill on {ranks} ranks against 1")
+    # Another rank's impact reaches rank 0 at the next gather: noticed then.
+    check(unresolved_impact_noticed(drills[ranks]), f"drill on {ranks} ranks: no unresolved-impact notice")
     check(filecmp.cmp(drills[1] / "bond_breaks.csv", drills[ranks] / "bond_breaks.csv", shallow=False),
           f"drill on {ranks} ranks: bond_breaks.csv differs")
 

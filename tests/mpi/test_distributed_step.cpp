@@ -77,7 +77,7 @@ struct OneProcess {
     sim.advance(settle_steps);
     const Domain& domain = sim.settings().domain;
     whole = std::make_unique<HaloExchange>(alone, RecursiveBisection(Brick{domain.min_m, domain.max_m}, {}, {}, 1),
-                                           sim.ghost_reach_m(kRadius));
+                                           sim.ghost_skin_m());
     sim.distribute(whole.get());
     sim.advance(steps);
     for (std::size_t i = 0; i < sim.particles.size(); ++i) index_of[sim.particles.id[i]] = i;
@@ -102,7 +102,7 @@ struct SplitRun {
     std::vector<Vec3> points = sim.particles.position_m;
     for (Vec3& x : points) x.x += skew_m;
     bricks.emplace(Brick{domain.min_m, domain.max_m}, points, std::span<const double>{}, comm.size());
-    halo = std::make_unique<HaloExchange>(comm, *bricks, sim.ghost_reach_m(kRadius), HaloExchange::Start::replicated);
+    halo = std::make_unique<HaloExchange>(comm, *bricks, sim.ghost_skin_m(), HaloExchange::Start::replicated);
     sim.distribute(halo.get());
     sim.advance(steps);
   }

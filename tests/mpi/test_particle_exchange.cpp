@@ -61,13 +61,18 @@ TEST(ParticleExchange, GhostsAreTheOtherRanksParticlesWithinReach) {
   const RecursiveBisection bricks = bricks_of(all, comm.size());
   ParticleStore mine = dealt(all, comm);
   migrate_particles(mine, bricks, comm);
-  const double reach = 2.5e-3;  // two of the largest radii
+  const double skin = 0.4e-3;
   ParticleStore ghosts;
-  exchange_ghosts(mine, bricks, reach, comm, ghosts);
+  exchange_ghosts(mine, bricks, skin, comm, ghosts);
+  // Brute force: the particles of other bricks within their own radius, the largest
+  // radius in this brick and the skin of it.
+  double largest_here = 0.0;
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (bricks.rank_of(all.position_m[k]) == comm.rank()) largest_here = std::max(largest_here, all.radius_m[k]);
   std::vector<ParticleId> expected, got(ghosts.id);
   for (std::size_t k = 0; k < all.size(); ++k)
     if (bricks.rank_of(all.position_m[k]) != comm.rank() &&
-        bricks.brick(comm.rank()).distance_m(all.position_m[k]) <= reach)
+        bricks.brick(comm.rank()).distance_m(all.position_m[k]) <= all.radius_m[k] + largest_here + skin)
       expected.push_back(all.id[k]);
   std::sort(got.begin(), got.end());
   EXPECT_EQ(got, expected);

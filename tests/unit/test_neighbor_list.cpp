@@ -65,6 +65,45 @@ TEST(NeighborList, HalfListHoldsExactlyThePairsWithinTheCutoff) {
   EXPECT_EQ(std::set<IdPair>(found.begin(), found.end()), expected);
 }
 
+// Under MPI (issue 19) the build is told which particles are ghosts: it lists every pair
+// with at least one own particle, exactly as without flags, no pair of two ghosts, and no
+// wall for a ghost; the flags follow the sort. Every third particle is a ghost, and a
+// wall plane crosses the box, so both kinds of entry would be there without the flags.
+TEST(NeighborList, GhostsAreListedOnlyWithOwnParticles) {
+  ParticleStore plain = random_mixture(1500, 11);
+  const double skin = 0.06e-3;
+  WallSet walls;
+  walls.add_plane(walls.add_body("floor", {}), {0, 0, 5e-3}, {0, 0, 1}, 0);
+  const CellGrid grid({0, 0, 0}, {0.01, 0.01, 0.01}, 0.6e-3 + skin, 1e6);
+  ParticleStore flagged = plain;
+  std::vector<std::uint8_t> ghost(flagged.size());
+  for (std::size_t i = 0; i < ghost.size(); ++i) ghost[i] = i % 3 == 0;
+  NeighborList all, own;
+  all.rebuild(plain, walls, grid, skin, 2);
+  own.rebuild(flagged, walls, grid, skin, 2, false, &ghost);
+
+  ASSERT_EQ(flagged.id, plain.id);  // the same sort
+  for (std::size_t i = 0; i < ghost.size(); ++i) ASSERT_EQ(ghost[i], flagged.id[i] % 3 == 0) << i;
+  std::multiset<IdPair> expected;
+  std::size_t ghost_pairs = 0, ghost_walls = 0;
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    for (std::uint32_t k = all.offset[i]; k < all.offset[i + 1]; ++k) {
+      const std::uint32_t j = all.partner[k];
+      if (ghost[i] && ghost[j]) ++ghost_pairs;
+      else expected.insert(ordered(plain.id[i], plain.id[j]));
+    }
+    if (ghost[i]) {
+      ghost_walls += all.wall_offset[i + 1] - all.wall_offset[i];
+      EXPECT_EQ(own.wall_offset[i + 1], own.wall_offset[i]) << i;
+    } else {
+      EXPECT_EQ(own.wall_offset[i + 1] - own.wall_offset[i], all.wall_offset[i + 1] - all.wall_offset[i]) << i;
+    }
+  }
+  ASSERT_GT(ghost_pairs, 100u);
+  ASSERT_GT(ghost_walls, 10u);
+  EXPECT_EQ(listed_pairs(flagged, own), expected);
+}
+
 // NeighborSkin: a particle's half is clamp(8 |v| dt, skin/2, 4 skin/2); a pair is listed
 // within R_i + R_j + h_i + h_j. Every tenth particle is fast (up to 8x the speed at which
 // 8 steps cover the slow half), so the fast ones' own search finds pairs of every kind:

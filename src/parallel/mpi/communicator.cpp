@@ -120,6 +120,14 @@ double Communicator::max(double value) const {
   return largest;
 }
 
+std::vector<double> Communicator::value_of_every_rank(double value) const {
+  const TimedIn timed(tally_);
+  ++tally_.collectives;
+  std::vector<double> values(static_cast<std::size_t>(size_));
+  MPI_Allgather(&value, 1, MPI_DOUBLE, values.data(), 1, MPI_DOUBLE, comm_);
+  return values;
+}
+
 std::vector<std::vector<std::byte>> Communicator::gather(const std::vector<std::byte>& mine, int root) const {
   if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw SimulationError(fmt::format("a message of {} bytes between ranks is larger than MPI's int counts", mine.size()));

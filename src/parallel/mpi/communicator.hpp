@@ -36,6 +36,8 @@ class Communicator {
   std::uint64_t sum(std::uint64_t value) const;
   /// The largest over the ranks.
   double max(double value) const;
+  /// Every rank's value on every rank, by rank (one collective).
+  std::vector<double> value_of_every_rank(double value) const;
   /// The bitwise or over the ranks.
   std::uint32_t bits_or(std::uint32_t value) const;
   /// Every rank's bytes on rank `root`, by rank (the other ranks get nothing).

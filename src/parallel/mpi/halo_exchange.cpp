@@ -120,17 +120,17 @@ std::vector<std::vector<std::uint32_t>> bonds_leaving(const BondStore& bonds, co
 
 }  // namespace
 
-HaloExchange::HaloExchange(const Communicator& comm, RecursiveBisection bricks, double reach_m, Start start,
+HaloExchange::HaloExchange(const Communicator& comm, RecursiveBisection bricks, double skin_m, Start start,
                            double imbalance)
     : comm_(comm),
       bricks_(std::move(bricks)),
       domain_(bricks_.brick(0)),
-      reach_m_(reach_m),
+      skin_m_(skin_m),
       imbalance_(imbalance),
       replicated_(start == Start::replicated) {
   if (bricks_.ranks() != comm_.size())
     throw SimulationError(fmt::format("{} bricks for {} ranks", bricks_.ranks(), comm_.size()));
-  if (!(reach_m_ > 0.0)) throw SimulationError(fmt::format("a ghost reach of {} m", reach_m_));
+  if (!(skin_m_ >= 0.0)) throw SimulationError(fmt::format("a ghost skin of {} m", skin_m_));
   if (!(imbalance_ >= 0.0)) throw SimulationError(fmt::format("an allowed imbalance of {}", imbalance_));
   for (int r = 1; r < bricks_.ranks(); ++r) {
     const Brick& b = bricks_.brick(r);
@@ -224,8 +224,9 @@ void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner&
           particles.id[p], particles.position_m[p].x, particles.position_m[p].y, particles.position_m[p].z)));
   comm_.agree(outside);
 
-  // Ghosts: copies of each particle within reach of another rank's brick.
-  sent_to_ = ghost_lists(particles, own, bricks_, reach_m_, me);
+  // Ghosts: copies of each particle another rank's brick wants (GhostReach: its own
+  // radius, that brick's largest and the skin).
+  sent_to_ = ghost_lists(particles, own, bricks_, gathered_ghost_reach(particles, own, skin_m_, comm_), me);
   for (std::size_t r = 0; r < ranks; ++r)
     messages[r] = sent_to_[r].empty() ? std::vector<std::byte>{}
                                       : pack_with_history(particles, history, sent_to_[r], ParticleTransfer::ghost);

@@ -20,12 +20,13 @@ class HaloExchange final : public ParticleHalo {
   /// hold any, they migrate), or every rank holds all of them, the same (each then keeps
   /// those of its brick with the contact history they own, and nothing is sent).
   enum class Start { spread, replicated };
-  /// reach_m: Simulation::ghost_reach_m for the largest particle. `comm` must outlive it.
+  /// skin_m: Simulation::ghost_skin_m, the most a pair's skin adds to its two radii (the
+  /// ghosts each brick wants: GhostReach). `comm` must outlive it.
   /// The bricks must tile the run's domain. At a build where the busiest rank has more
   /// than (1 + imbalance) x the mean work, the domain is cut again by everyone's particles
   /// weighted by their work (the same bricks on every rank: the cuts do not depend on the
   /// points' order); the bricks change where each particle is stepped, not its result.
-  HaloExchange(const Communicator& comm, RecursiveBisection bricks, double reach_m, Start start = Start::spread,
+  HaloExchange(const Communicator& comm, RecursiveBisection bricks, double skin_m, Start start = Start::spread,
                double imbalance = 0.1);
 
   bool any_rank(bool mine, const std::exception_ptr& error) override { return comm_.any_rank(mine, error); }
@@ -57,7 +58,7 @@ class HaloExchange final : public ParticleHalo {
 
   RecursiveBisection bricks_;
   Brick domain_;  // what the bricks tile
-  double reach_m_;
+  double skin_m_;
   double imbalance_;
   std::uint64_t rebalances_ = 0;
   // Since the last build, by rank: the indices of this rank's particles it sent that rank

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "core/error.hpp"
 #include "parallel/particle_transfer.hpp"
 
@@ -41,13 +43,22 @@ std::vector<std::vector<std::uint32_t>> migration_lists(const ParticleStore& loc
 }
 
 std::vector<std::vector<std::uint32_t>> ghost_lists(const ParticleStore& local, std::size_t count,
-                                                    const RecursiveBisection& bricks, double reach_m, int this_rank) {
+                                                    const RecursiveBisection& bricks, const GhostReach& reach,
+                                                    int this_rank) {
+  if (reach.largest_radius_m.size() != static_cast<std::size_t>(bricks.ranks()))
+    throw SimulationError(fmt::format("a ghost reach for {} bricks, of {}", reach.largest_radius_m.size(), bricks.ranks()));
   std::vector<std::vector<std::uint32_t>> to_rank(static_cast<std::size_t>(bricks.ranks()));
   for (std::size_t p = 0; p < count; ++p)
     for (int r = 0; r < bricks.ranks(); ++r)
-      if (r != this_rank && bricks.brick(r).distance_m(local.position_m[p]) <= reach_m)
+      if (r != this_rank && reach.wanted(bricks, r, local.position_m[p], local.radius_m[p]))
         to_rank[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(p));
   return to_rank;
+}
+
+GhostReach gathered_ghost_reach(const ParticleStore& local, std::size_t count, double skin_m, const Communicator& comm) {
+  double largest = 0.0;
+  for (std::size_t p = 0; p < count; ++p) largest = std::max(largest, local.radius_m[p]);
+  return GhostReach{skin_m, comm.value_of_every_rank(largest)};
 }
 
 std::size_t migrate_particles(ParticleStore& local, const RecursiveBisection& bricks, const Communicator& comm) {
@@ -64,11 +75,12 @@ std::size_t migrate_particles(ParticleStore& local, const RecursiveBisection& br
   return left;
 }
 
-void exchange_ghosts(ParticleStore& local, const RecursiveBisection& bricks, double reach_m, const Communicator& comm,
+void exchange_ghosts(ParticleStore& local, const RecursiveBisection& bricks, double skin_m, const Communicator& comm,
                      ParticleStore& ghosts) {
   if (bricks.ranks() != comm.size())
     throw SimulationError(fmt::format("{} bricks for {} ranks", bricks.ranks(), comm.size()));
-  const std::vector<std::vector<std::uint32_t>> to_rank = ghost_lists(local, local.size(), bricks, reach_m, comm.rank());
+  const std::vector<std::vector<std::uint32_t>> to_rank =
+      ghost_lists(local, local.size(), bricks, gathered_ghost_reach(local, local.size(), skin_m, comm), comm.rank());
   ghosts = ParticleStore{};
   unpack_messages(comm.exchange(pack_lists(local, to_rank, ParticleTransfer::ghost)), ParticleTransfer::ghost, ghosts);
 }

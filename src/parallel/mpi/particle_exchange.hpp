@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/particle_store.hpp"
+#include "parallel/ghost_reach.hpp"
 #include "parallel/mpi/communicator.hpp"
 #include "parallel/recursive_bisection.hpp"
 
@@ -18,10 +19,16 @@ namespace regodem {
 std::vector<std::vector<std::uint32_t>> migration_lists(const ParticleStore& local, const RecursiveBisection& bricks,
                                                         int this_rank);
 
-/// For each other rank, the indices of the first `count` particles of `local` within
-/// reach_m of that rank's brick (those its ghosts copy); this rank's own list stays empty.
+/// For each other rank, the indices of the first `count` particles of `local` that rank
+/// wants as ghosts (GhostReach); this rank's own list stays empty.
 std::vector<std::vector<std::uint32_t>> ghost_lists(const ParticleStore& local, std::size_t count,
-                                                    const RecursiveBisection& bricks, double reach_m, int this_rank);
+                                                    const RecursiveBisection& bricks, const GhostReach& reach,
+                                                    int this_rank);
+
+/// The GhostReach of a run's bricks for a pair skin of `skin_m` (2 h_max), each rank's
+/// largest radius among the first `count` particles of `local` (its own) gathered from
+/// every rank: one collective.
+GhostReach gathered_ghost_reach(const ParticleStore& local, std::size_t count, double skin_m, const Communicator& comm);
 
 /// Sends every particle of `local` whose position lies in another rank's brick to that
 /// rank, with the fields that migrate (those the next pass computes start at 0), and
@@ -29,8 +36,8 @@ std::vector<std::vector<std::uint32_t>> ghost_lists(const ParticleStore& local, 
 std::size_t migrate_particles(ParticleStore& local, const RecursiveBisection& bricks, const Communicator& comm);
 
 /// Replaces `ghosts` by copies (the fields ghosts need) of the other ranks' particles
-/// whose centres lie within reach_m of this rank's brick.
-void exchange_ghosts(ParticleStore& local, const RecursiveBisection& bricks, double reach_m, const Communicator& comm,
+/// that this rank's brick wants (gathered_ghost_reach for a pair skin of skin_m).
+void exchange_ghosts(ParticleStore& local, const RecursiveBisection& bricks, double skin_m, const Communicator& comm,
                      ParticleStore& ghosts);
 
 }  // namespace regodem

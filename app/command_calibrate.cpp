@@ -432,7 +432,7 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateOptions& options) {
       ->type_name("N")
       ->check(CLI::Range(1, 4096));
   calibrate->add_option("--mpirun", options.mpirun,
-                        "The launcher of a run over ranks and its options, taking -np N (default: mpirun --bind-to none)")
+                        "The launcher of a run over ranks and its options: -np N is appended, or {ranks} in it is replaced by N (srun -n {ranks}; default: mpirun --bind-to none)")
       ->type_name("COMMAND");
   calibrate->footer(
       "Runs the reference, every point of a central composite design, and a verification run at the solution, each\n"

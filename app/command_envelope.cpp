@@ -316,7 +316,7 @@ CLI::App* add_envelope_command(CLI::App& app, EnvelopeOptions& options) {
       ->type_name("N")
       ->check(CLI::Range(1, 4096));
   command->add_option("--mpirun", options.mpirun,
-                        "The launcher of a run over ranks and its options, taking -np N (default: mpirun --bind-to none)")
+                        "The launcher of a run over ranks and its options: -np N is appended, or {ranks} in it is replaced by N (srun -n {ranks}; default: mpirun --bind-to none)")
       ->type_name("COMMAND");
   command->footer(
       "Runs every point of a central composite design as `regodem run` into OUTDIR/runs/point_NN; writes\n"

@@ -7,6 +7,7 @@
 #include <iterator>
 #include <limits>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 #include <fmt/format.h>
@@ -151,15 +152,36 @@ RunLauncher RunLauncher::from(int ranks, const std::string& mpirun_command) {
   std::istringstream words(mpirun_command);
   for (std::string word; words >> word;) launcher.mpirun.push_back(word);
   if (launcher.ranks > 1 && launcher.mpirun.empty())
-    throw InputError("--mpirun is empty: runs over MPI ranks need a launcher that takes -np N (mpirun, mpiexec)");
+    throw InputError(
+        "--mpirun is empty: runs over MPI ranks need a launcher that takes -np N (mpirun, mpiexec), or one whose "
+        "words say where the count goes with {ranks} (srun -n {ranks})");
   return launcher;
+}
+
+std::vector<std::string> RunLauncher::launch_words() const {
+  if (ranks <= 1) return {};
+  static constexpr std::string_view placeholder = "{ranks}";
+  const std::string count = std::to_string(ranks);
+  std::vector<std::string> words;
+  bool placed = false;
+  for (std::string word : mpirun) {
+    for (std::size_t at = word.find(placeholder); at != std::string::npos; at = word.find(placeholder, at)) {
+      word.replace(at, placeholder.size(), count);
+      at += count.size();
+      placed = true;
+    }
+    words.push_back(std::move(word));
+  }
+  // mpirun and mpiexec take the count as -np N; a launcher that does not (srun) says where it goes.
+  if (!placed) words.insert(words.end(), {"-np", count});
+  return words;
 }
 
 std::string RunLauncher::description() const {
   if (ranks <= 1) return "";
   std::string command;
-  for (const std::string& word : mpirun) command += (command.empty() ? "" : " ") + word;
-  return fmt::format(", over {} MPI ranks ({} -np {})", ranks, command, ranks);
+  for (const std::string& word : launch_words()) command += (command.empty() ? "" : " ") + word;
+  return fmt::format(", over {} MPI ranks ({})", ranks, command);
 }
 
 int RunLauncher::processes(int option, int file, int threads_per_run) const {
@@ -195,9 +217,10 @@ int RunBatches::run(const std::vector<PlannedRun>& runs) {
       continue;
     }
     ChildJob job;
-    if (launcher_.ranks > 1) {  // mpirun [its options] -np N regodem run ...
-      job.arguments.assign(launcher_.mpirun.begin() + 1, launcher_.mpirun.end());
-      job.arguments.insert(job.arguments.end(), {"-np", std::to_string(launcher_.ranks), program_});
+    if (launcher_.ranks > 1) {  // mpirun [its options] -np N (or where {ranks} says) regodem run ...
+      const std::vector<std::string> words = launcher_.launch_words();
+      job.arguments.assign(words.begin() + 1, words.end());
+      job.arguments.push_back(program_);
     }
     job.arguments.insert(job.arguments.end(), {"run", planned.scenario, "-o", directory(planned).string(), "--threads",
                                                std::to_string(threads_per_run_)});
@@ -242,7 +265,7 @@ int RunBatches::run(const std::vector<PlannedRun>& runs) {
                         : ""));
   };
   const auto results =
-      run_children(launcher_.ranks > 1 ? launcher_.mpirun.front() : program_, jobs, processes_, signals_, events);
+      run_children(launcher_.ranks > 1 ? launcher_.launch_words().front() : program_, jobs, processes_, signals_, events);
   if (signals_.load() > 0) return exit_status::interrupted;
   for (std::size_t j = 0; j < jobs.size(); ++j) {
     if (results[j] && results[j]->exit_code != 0) {

@@ -65,7 +65,10 @@ struct RunLauncher {
 
   /// From `ranks_per_run` and the `--mpirun` text (split at spaces); InputError when empty.
   static RunLauncher from(int ranks, const std::string& mpirun_command);
-  /// ", over N MPI ranks (mpirun ...)" for a progress line; empty for one.
+  /// The launcher's words with the rank count: each "{ranks}" replaced by N, or "-np N"
+  /// appended where none is given (mpirun, mpiexec). Empty for one rank.
+  std::vector<std::string> launch_words() const;
+  /// ", over N MPI ranks (mpirun ... -np N)" for a progress line; empty for one.
   std::string description() const;
   /// Runs at once: `option` or else `file`, when given (> 0); else the cores / (threads x ranks).
   int processes(int option, int file, int threads_per_run) const;

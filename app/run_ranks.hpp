@@ -39,8 +39,8 @@ class RunRanks {
   /// rank alone may have met (writing an output), when the others may wait for it.
   [[noreturn]] void abort(int exit_code);
   /// From here `sim`, built the same on every rank, is stepped over the ranks: one brick
-  /// of its domain each, starting gathered. Throws InputError for what cannot yet run over
-  /// ranks (bonds, removing lost particles).
+  /// of its domain each, starting gathered (every rank holds every particle; the first
+  /// build keeps each brick's).
   void take(Simulation& sim);
 
  private:

@@ -305,7 +305,7 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
       // Slow partners no larger than the owner, within R_i + R_j + h_i + skin/2.
       const std::size_t first = partners.size();
       for_each_particle_near(grid, x[i], 2.0 * ri + hi + slow_half, [&](std::uint32_t j) {
-        if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j]) || (ghost_i && ghost[j])) return;
+        if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j]) || both_ghosts(i, j)) return;
         const double cutoff = ri + radius[j] + hi + slow_half;
         if (norm2(x[j] - x[i]) < cutoff * cutoff && !blocked_by(thin_walls, i, j)) partners.push_back(j);
       });

@@ -159,7 +159,10 @@ RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, c
 double project_gather_s(double particles, double bytes_per_particle, int ranks, double one_process_step_s,
                         const NetworkModel& network) {
   if (ranks <= 1) return 0.0;
-  return 2.0 * collective_rounds(ranks) * network.latency_s +
+  // Three all-gathers of two collectives each (a count, then the data): the particles, the
+  // bond breaks and the fastest impacts (Simulation::gather_everywhere).
+  constexpr double collectives_per_gather = 6.0;
+  return collectives_per_gather * collective_rounds(ranks) * network.latency_s +
          particles * bytes_per_particle / network.bandwidth_bytes_per_s + one_process_step_s;
 }
 

@@ -84,9 +84,11 @@ RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, c
                           const CodeTraffic& traffic);
 
 /// A gather (every rank given every particle, where a run reads or adds particles:
-/// samples, measurements, snapshots, insertions): the all-gather (two collectives) of
-/// `particles` of `bytes_per_particle` each (fields, contact histories, bonds), then every
-/// rank's lists rebuilt over all of them, counted as one step of one process.
+/// samples, measurements, snapshots, insertions): three all-gathers (six collectives:
+/// the particles, bond breaks, impacts) moving `particles` of `bytes_per_particle` each
+/// (fields, contact histories, bonds), then every rank's lists rebuilt over all of them,
+/// counted as one step of one process. The build the next step makes to split them again
+/// is not charged (a build's collectives and exchanges, small beside that step).
 double project_gather_s(double particles, double bytes_per_particle, int ranks, double one_process_step_s,
                         const NetworkModel& network);
 

@@ -55,7 +55,7 @@ double kinetic_energy_per_particle(const Simulation& sim) {
 }
 
 // Decisions a rank's clock or a signal makes; under MPI every rank takes them at the same
-// step (Simulation::bits_over_ranks), as rank 0's clock or any rank's signal says.
+// step (Simulation::bits_over_ranks), as any rank's clock or signal says.
 enum ClockDecision : std::uint32_t { stop_now = 1, checkpoint_now = 2, progress_now = 4 };
 
 /// Refuses a coupled heat step above the explicit limit min m c / sum G (DESIGN.md

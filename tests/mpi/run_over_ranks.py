@@ -197,7 +197,8 @@ check(bad.returncode == 2 and bad.stderr.count("regodem: error:") == 1,
 check(not (WORK / "bad").exists(), "a bad scenario: the refused run left its directory")
 
 # A study whose runs go over ranks (`envelope --ranks-per-run 2`, each run started as
-# `MPIEXEC --oversubscribe -np 2 regodem run ...`): every run says it ran over 2 ranks, and
+# `MPIEXEC --oversubscribe -np 2 regodem run ...`, and once as `MPIEXEC --oversubscribe -n 2`
+# from `--mpirun "... -n {ranks}"`): every run says it ran over 2 ranks, and
 # the responses equal those of runs in one process (the grain on a plate: one grain, its
 # temperature stepped bit for bit alike; runs.csv byte for byte).
 CALIBRATE = SCENARIOS / "calibrate"
@@ -213,15 +214,23 @@ one = subprocess.run([REGODEM, "envelope", "plate_envelope.yaml", "-o", "one", "
 two = subprocess.run([REGODEM, "envelope", "plate_envelope.yaml", "-o", "two", "--processes", "1", "--ranks-per-run",
                       "2", "--mpirun", f"{MPIEXEC} --oversubscribe"], cwd=study, capture_output=True, text=True,
                      env=study_env, timeout=TIMEOUT_S)
+# The same with a launcher that is told where the count goes (as `srun -n {ranks}` would be).
+placed = subprocess.run([REGODEM, "envelope", "plate_envelope.yaml", "-o", "placed", "--processes", "1",
+                         "--ranks-per-run", "2", "--mpirun", f"{MPIEXEC} --oversubscribe -n {{ranks}}"], cwd=study,
+                        capture_output=True, text=True, env=study_env, timeout=TIMEOUT_S)
 check(one.returncode == 0, f"envelope in one process: exit status {one.returncode}\n{one.stdout[-2000:]}{one.stderr[-2000:]}")
-check(two.returncode == 0, f"envelope over ranks: exit status {two.returncode}\n{two.stdout[-2000:]}{two.stderr[-2000:]}")
-if one.returncode == 0 and two.returncode == 0:
-    check("over 2 MPI ranks" in two.stdout, "envelope over ranks: the progress does not say so")
-    logs = sorted((study / "two" / "logs").glob("*.log"))
+for name, result, launched in (("two", two, "--oversubscribe -np 2"), ("placed", placed, "--oversubscribe -n 2")):
+    check(result.returncode == 0,
+          f"envelope over ranks ({name}): exit status {result.returncode}\n{result.stdout[-2000:]}{result.stderr[-2000:]}")
+    if one.returncode != 0 or result.returncode != 0:
+        continue
+    check("over 2 MPI ranks" in result.stdout and launched in result.stdout,
+          f"envelope over ranks ({name}): the progress does not say '{launched}'")
+    logs = sorted((study / name / "logs").glob("*.log"))
     check(len(logs) > 0 and all("over 2 MPI ranks" in log.read_text() for log in logs),
-          f"envelope over ranks: not every run of {len(logs)} ran over 2 ranks")
-    check(filecmp.cmp(study / "one" / "runs.csv", study / "two" / "runs.csv", shallow=False),
-          "envelope over ranks: runs.csv differs from the runs in one process")
+          f"envelope over ranks ({name}): not every run of {len(logs)} ran over 2 ranks")
+    check(filecmp.cmp(study / "one" / "runs.csv", study / name / "runs.csv", shallow=False),
+          f"envelope over ranks ({name}): runs.csv differs from the runs in one process")
 
 print("run over ranks:", "FAILED" if failures else "passed", f"({len(failures)} failures)")
 sys.exit(1 if failures else 0)

@@ -141,6 +141,26 @@ HaloExchange::HaloExchange(const Communicator& comm, RecursiveBisection bricks, 
   }
 }
 
+bool HaloExchange::uneven(double busiest, double total) const {
+  return busiest > (1.0 + imbalance_) * total / comm_.size();
+}
+
+void HaloExchange::rebalance_replicated(const ParticleStore& particles, const std::vector<double>& work) {
+  if (comm_.size() == 1) return;
+  // Every rank holds the same particles with the same work (one process's lists, after a
+  // gather or at the start): each weighs the bricks and cuts them alone, alike, unsent.
+  std::vector<double> per_rank(static_cast<std::size_t>(comm_.size()), 0.0);
+  double total = 0.0;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    per_rank[static_cast<std::size_t>(bricks_.rank_of(particles.position_m[i]))] += work[i];
+    total += work[i];
+  }
+  if (!uneven(*std::max_element(per_rank.begin(), per_rank.end()), total)) return;
+  bricks_ = RecursiveBisection(domain_, std::span<const Vec3>(particles.position_m.data(), particles.size()), work,
+                               comm_.size());
+  ++rebalances_;
+}
+
 void HaloExchange::rebalance(const ParticleStore& particles, const std::vector<double>& work) {
   if (comm_.size() == 1) return;
   double mine = 0.0;
@@ -148,7 +168,7 @@ void HaloExchange::rebalance(const ParticleStore& particles, const std::vector<d
   double total = mine;
   comm_.sum_in_rank_order(std::span<double>(&total, 1));
   const double busiest = comm_.max(mine);
-  if (!(busiest > (1.0 + imbalance_) * total / comm_.size())) return;
+  if (!uneven(busiest, total)) return;
   // Every rank's particles and work on every rank, by rank: the same cuts everywhere.
   std::vector<std::byte> bytes(particles.size() * (sizeof(Vec3) + sizeof(double)));
   std::memcpy(bytes.data(), particles.position_m.data(), particles.size() * sizeof(Vec3));
@@ -183,8 +203,10 @@ void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner&
   if (history.owners() != particles.size() || work.size() != particles.size())
     throw SimulationError(fmt::format("{} particles with {} contact histories and {} costs", particles.size(),
                                       history.owners(), work.size()));
-  // Every rank holds all particles before a replicated start: nothing to weigh yet.
-  if (!replicated_) rebalance(particles, work);
+  if (replicated_)
+    rebalance_replicated(particles, work);
+  else
+    rebalance(particles, work);
 
   // Each particle to the rank of its brick, with the contact history it owns.
   const std::vector<std::vector<std::uint32_t>> to_rank = migration_lists(particles, bricks_, me);

@@ -53,8 +53,12 @@ class HaloExchange final : public ParticleHalo {
 
  private:
   const Communicator& comm_;
-  /// Cuts the domain again when the work is uneven (see the constructor).
+  /// Cuts the domain again when the work is uneven (see the constructor): from every
+  /// rank's particles and work, or, where every rank holds them all, from its own.
   void rebalance(const ParticleStore& particles, const std::vector<double>& work);
+  void rebalance_replicated(const ParticleStore& particles, const std::vector<double>& work);
+  /// Whether the busiest rank's work is over (1 + imbalance) x the mean.
+  bool uneven(double busiest, double total) const;
 
   RecursiveBisection bricks_;
   Brick domain_;  // what the bricks tile

@@ -21,7 +21,7 @@ CodeTraffic code_traffic(bool bonds, bool removes_lost_particles) {
   t.exchanges_per_step = 1;  // HaloExchange::refresh_ghosts
   // A build (Simulation::rebuild_neighbors, HaloExchange::redistribute), instead of the
   // refresh: 6 collectives (the particle count, the busiest rank's work, the agreement that
-  // no particle left its brick unowned, every rank's largest radius for the ghosts' reach,
+  // no particle left its brick unowned, every rank's radius bands for the ghosts' reach,
   // ...: measured by the test); with bonds the
   // agreement that none outreaches the ghosts; with lost grains removed their books
   // gathered (and their bonds' stored energy summed); the migrants sent, then the new ghosts.
@@ -50,7 +50,7 @@ RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, st
   if (radii_m.size() != points.size())
     throw InputError(fmt::format("{} radii for {} points", radii_m.size(), points.size()));
   const RecursiveBisection bricks(domain, points, weights, ranks);
-  const GhostReach reach{skin_m, largest_radius_by_brick(bricks, points, radii_m)};
+  const GhostReach reach{skin_m, radius_bands_by_brick(bricks, points, radii_m)};
   const auto n = static_cast<std::size_t>(ranks);
   RankShares shares;
   shares.ranks = ranks;
@@ -67,7 +67,7 @@ RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, st
     shares.own_work[owner] += w;
     shares.total_work += w;
     for (std::size_t r = 0; r < n; ++r) {
-      if (r == owner || !reach.wanted(bricks, static_cast<int>(r), points[p], radii_m[p])) continue;
+      if (r == owner || !reach.wanted(static_cast<int>(r), points[p], radii_m[p])) continue;
       ++shares.ghosts[r];
       shares.ghost_work[r] += w;
       hears_from[r * n + owner] = 1;

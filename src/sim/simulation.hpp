@@ -241,8 +241,8 @@ class Simulation {
   /// Whether the particle at index i is another rank's (a ghost).
   bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
   /// What the lists' skin adds, at most, to the two radii of a pair they list: a rank
-  /// wants another's particle as a ghost within its radius, the brick's largest and this
-  /// of its brick (GhostReach).
+  /// wants another's particle as a ghost within its radius, the largest of one of the
+  /// brick's size bands and this of that band's centres (GhostReach).
   double ghost_skin_m() const;
   /// A run over MPI whose every rank built this simulation the same (the same particles):
   /// it starts gathered (gather_everywhere), and its first step splits it (`halo` made

@@ -180,8 +180,8 @@ void Simulation::redistribute_particles() {
     std::exception_ptr stretched;
     if (const std::size_t b = bonds_.refresh_indices(particles); b < bonds_.size())
       stretched = std::make_exception_ptr(SimulationError(fmt::format(
-          "the bond between particles {} and {} reaches farther than the ghosts (its radii and {:.4g} m from a rank's "
-          "brick): its ends are more than their radii and the skin apart, which an intact bond should not be",
+          "the bond between particles {} and {} reaches farther than the ghosts (their radii and {:.4g} m from the "
+          "other rank's grains): its ends are more than their radii and the skin apart, which an intact bond should not be",
           bonds_.id_i[b], bonds_.id_j[b], ghost_skin_m())));
     halo_->agree(stretched);
   }

@@ -1,8 +1,9 @@
 // Particles between ranks (src/parallel/mpi/particle_exchange.hpp), run by CTest with
 // mpirun on 1, 2 and 3 ranks. Every rank draws the same particles from one seed, so each
 // can check what it holds against the whole set: after migration, exactly the particles
-// in its brick, every migrating field bit for bit; its ghosts, exactly the other ranks'
-// particles within reach of its brick (brute force over the whole set).
+// in its brick, every migrating field bit for bit; its ghosts, every other rank's particle
+// that can pair with one of its own (brute force over all pairs), none beyond the brick's
+// farthest reach.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,23 +62,39 @@ TEST(ParticleExchange, GhostsAreTheOtherRanksParticlesWithinReach) {
   const RecursiveBisection bricks = bricks_of(all, comm.size());
   ParticleStore mine = dealt(all, comm);
   migrate_particles(mine, bricks, comm);
-  const double skin = 0.4e-3;
+  // The set's grains are about 8 mm apart: a skin of 5 mm makes dozens of pairs across
+  // each rank's faces (41-94 grains of other ranks per rank on 2 and 3 ranks), so that the
+  // check below checks something.
+  const double skin = 5e-3;
   ParticleStore ghosts;
   exchange_ghosts(mine, bricks, skin, comm, ghosts);
-  // Brute force: the particles of other bricks within their own radius, the largest
-  // radius in this brick and the skin of it.
+  // Brute force over every pair: each particle of another brick that one of this brick's
+  // can be listed with (within their two radii and the skin) is a ghost, none missed.
+  std::vector<std::size_t> here;
   double largest_here = 0.0;
   for (std::size_t k = 0; k < all.size(); ++k)
-    if (bricks.rank_of(all.position_m[k]) == comm.rank()) largest_here = std::max(largest_here, all.radius_m[k]);
-  std::vector<ParticleId> expected, got(ghosts.id);
-  for (std::size_t k = 0; k < all.size(); ++k)
-    if (bricks.rank_of(all.position_m[k]) != comm.rank() &&
-        bricks.brick(comm.rank()).distance_m(all.position_m[k]) <= all.radius_m[k] + largest_here + skin)
-      expected.push_back(all.id[k]);
+    if (bricks.rank_of(all.position_m[k]) == comm.rank()) {
+      here.push_back(k);
+      largest_here = std::max(largest_here, all.radius_m[k]);
+    }
+  std::vector<ParticleId> needed, got(ghosts.id);
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (bricks.rank_of(all.position_m[k]) == comm.rank()) continue;
+    for (const std::size_t o : here)
+      if (norm(all.position_m[k] - all.position_m[o]) <= all.radius_m[k] + all.radius_m[o] + skin) {
+        needed.push_back(all.id[k]);
+        break;
+      }
+  }
   std::sort(got.begin(), got.end());
-  EXPECT_EQ(got, expected);
+  EXPECT_TRUE(std::includes(got.begin(), got.end(), needed.begin(), needed.end()))
+      << needed.size() << " particles can pair with this brick's, " << got.size() << " ghosts";
+  // And none is farther from the brick than its radius, the brick's largest and the skin.
+  for (std::size_t g = 0; g < ghosts.size(); ++g)
+    EXPECT_LE(bricks.brick(comm.rank()).distance_m(ghosts.position_m[g]), ghosts.radius_m[g] + largest_here + skin)
+        << "ghost " << ghosts.id[g];
   if (comm.size() > 1) {
-    EXPECT_FALSE(expected.empty());
+    EXPECT_GT(needed.size(), 20u);
   }
   for (std::size_t g = 0; g < ghosts.size(); ++g) {
     const std::size_t k = ghosts.id[g];

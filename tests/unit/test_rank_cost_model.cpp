@@ -26,9 +26,9 @@ std::vector<double> radii(const std::vector<Vec3>& points, double radius_m) {
 
 TEST(RankCostModel, TwoBricksEachHoldTheOthersNearestLayerAsGhosts) {
   const std::vector<Vec3> points = lattice();
-  // The nearest layer of the other brick is 0.5 d away, the next 1.5 d; the reach is
-  // 2 x 0.25 d + 0.1 d = 0.6 d.
-  const RankShares shares = cut_into_bricks(cube, points, radii(points, 0.25 * d), {}, 0.1 * d, 2);
+  // The other brick's nearest layer is 1.0 d from the box of this brick's centres, the
+  // next 2.0 d; the reach is 2 x 0.45 d + 0.2 d = 1.1 d.
+  const RankShares shares = cut_into_bricks(cube, points, radii(points, 0.45 * d), {}, 0.2 * d, 2);
   for (int r = 0; r < 2; ++r) {
     EXPECT_EQ(shares.own[r], 500u);
     EXPECT_EQ(shares.ghosts[r], 100u);
@@ -39,11 +39,12 @@ TEST(RankCostModel, TwoBricksEachHoldTheOthersNearestLayerAsGhosts) {
 
 TEST(RankCostModel, EightBricksTakeFacesEdgesAndCornersWithinReach) {
   const std::vector<Vec3> points = lattice();
-  // Each brick is 5 x 5 x 5 in a corner of the cube. Its three face neighbours' nearest
-  // layers (25 points each) are 0.5 d away, the three edge neighbours' nearest rows (5
-  // each) 0.71 d, the corner neighbour's nearest point 0.87 d.
-  const RankShares faces = cut_into_bricks(cube, points, radii(points, 0.25 * d), {}, 0.1 * d, 8);
-  const RankShares all = cut_into_bricks(cube, points, radii(points, 0.4 * d), {}, 0.1 * d, 8);
+  // Each brick is 5 x 5 x 5 in a corner of the cube, its centres 0.5-4.5 d. Its three face
+  // neighbours' nearest layers (25 points each) are 1.0 d from them, the three edge
+  // neighbours' nearest rows (5 each) 1.41 d, the corner neighbour's nearest point 1.73 d,
+  // the next layers 2.0 d or more. Reaches of 1.1 d and 1.8 d.
+  const RankShares faces = cut_into_bricks(cube, points, radii(points, 0.45 * d), {}, 0.2 * d, 8);
+  const RankShares all = cut_into_bricks(cube, points, radii(points, 0.8 * d), {}, 0.2 * d, 8);
   for (int r = 0; r < 8; ++r) {
     EXPECT_EQ(faces.own[r], 125u);
     EXPECT_EQ(faces.ghosts[r], 75u);
@@ -54,22 +55,25 @@ TEST(RankCostModel, EightBricksTakeFacesEdgesAndCornersWithinReach) {
 }
 
 // Two sizes: the fine grains (r = 0.1 d) in the lower half of the lattice (z < 5 d), the
-// coarse (r = 0.4 d) above; the domain is longest along x, so the cut falls across x at
-// 5 d and each brick holds both sizes (its largest radius 0.4 d). With a skin of 0.8 d a
-// fine grain is wanted within 0.1 + 0.4 + 0.8 = 1.3 d of the other brick (its nearest
-// layer, 0.5 d away: 50 fine grains), a coarse one within 0.4 + 0.4 + 0.8 = 1.6 d (its two
-// nearest layers, 0.5 and 1.5 d: 100). A uniform reach (1.6 d for all) would give 200,
-// without the grain's own radius (1.2 d) or without the brick's largest (0.9 and 1.2 d)
-// 100.
-TEST(RankCostModel, AGrainsReachIsItsRadiusTheBricksLargestAndTheSkin) {
+// coarse (r = 0.4 d) above; the domain is longest along x, so the cut falls across x
+// between the layers at 4.5 and 5.5 d and each brick holds both sizes, its coarse centres
+// in a box at z = 5.5-9.5 d and its fine ones at z = 0.5-4.5 d. With a skin of 0.5 d a
+// coarse grain of the other brick's nearest layer (1.0 d from the coarse box) is within
+// 0.4 + 0.4 + 0.5 = 1.3 d of it (50 grains), its next layer (2.0 d) is not; a fine grain of
+// that layer is 1.0 d from the fine box, beyond 0.1 + 0.1 + 0.5 = 0.7 d, and at least
+// 1.41 d from the coarse box, beyond 0.1 + 0.4 + 0.5 = 1.0 d: none, and none of them can
+// pair with this brick's grains (the nearest fine-fine pair is 1.0 d apart, fine-coarse
+// 1.41 d). Reaching from the brick's face (0.5 d from the nearest layer) with its largest
+// radius would take the fine layer too (100); a uniform reach of 1.3 d, 100 as well.
+TEST(RankCostModel, AGrainsReachIsItsRadiusItsSizeBandsLargestAndTheSkinFromTheBandsCentres) {
   const std::vector<Vec3> points = lattice();
   std::vector<double> radius;
   for (const Vec3& x : points) radius.push_back(x.z < 5 * d ? 0.1 * d : 0.4 * d);
   const Brick long_in_x{{0, 0, 0}, {10.5 * d, 10 * d, 10 * d}};
-  const RankShares two = cut_into_bricks(long_in_x, points, radius, {}, 0.8 * d, 2);
+  const RankShares two = cut_into_bricks(long_in_x, points, radius, {}, 0.5 * d, 2);
   for (int r = 0; r < 2; ++r) {
     EXPECT_EQ(two.own[r], 500u);
-    EXPECT_EQ(two.ghosts[r], 50u + 100u);
+    EXPECT_EQ(two.ghosts[r], 50u);
   }
 }
 
@@ -90,7 +94,7 @@ TEST(RankCostModel, AFreeNetworkLeavesTheGhostsWork) {
   // Each rank steps its 125 own particles and its 91 ghosts, at one process's cost per
   // particle; the counts scale with the run's particles (2,000 for this sample of 1,000).
   const OneProcessStep one{2000.0, 1e-3, 0.1};
-  const RankStepCost cost = project_step(cut_into_bricks(cube, points, radii(points, 0.4 * d), {}, 0.1 * d, 8), one, free, code_traffic());
+  const RankStepCost cost = project_step(cut_into_bricks(cube, points, radii(points, 0.8 * d), {}, 0.2 * d, 8), one, free, code_traffic());
   EXPECT_NEAR(cost.step_s, 1e-3 * (125.0 + 91.0) / 1000.0, 1e-15);
   EXPECT_NEAR(cost.efficiency, 1000.0 / (8.0 * 216.0), 1e-12);
   EXPECT_DOUBLE_EQ(cost.own, 250.0);
@@ -142,7 +146,7 @@ TEST(RankCostModel, AFiniteNetworkAddsTheHaloAndTheCollectivesByHand) {
   const CodeTraffic traffic = code_traffic();
   ASSERT_EQ(traffic.refresh_bytes_per_ghost, 88u);  // 3 vectors and 2 scalars of doubles
   const RankStepCost cost =
-      project_step(cut_into_bricks(cube, points, radii(points, 0.25 * d), {}, 0.1 * d, 2), OneProcessStep{1000.0, 1e-3, 0.0}, network, traffic);
+      project_step(cut_into_bricks(cube, points, radii(points, 0.45 * d), {}, 0.2 * d, 2), OneProcessStep{1000.0, 1e-3, 0.0}, network, traffic);
   EXPECT_NEAR(cost.compute_s, 600e-6, 1e-15);
   EXPECT_NEAR(cost.halo_s, 1e-6 + 0.008e-6 + 1e-6 + 8.8e-6, 1e-15);
   EXPECT_NEAR(cost.collectives_s, 4e-6, 1e-15);

@@ -120,11 +120,14 @@ double Communicator::max(double value) const {
   return largest;
 }
 
-std::vector<double> Communicator::value_of_every_rank(double value) const {
+std::vector<double> Communicator::values_of_every_rank(std::span<const double> mine) const {
+  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw SimulationError(fmt::format("{} values for each rank are more than MPI's int counts", mine.size()));
   const TimedIn timed(tally_);
   ++tally_.collectives;
-  std::vector<double> values(static_cast<std::size_t>(size_));
-  MPI_Allgather(&value, 1, MPI_DOUBLE, values.data(), 1, MPI_DOUBLE, comm_);
+  const int count = static_cast<int>(mine.size());
+  std::vector<double> values(mine.size() * static_cast<std::size_t>(size_));
+  MPI_Allgather(mine.data(), count, MPI_DOUBLE, values.data(), count, MPI_DOUBLE, comm_);
   return values;
 }
 

@@ -247,7 +247,7 @@ void HaloExchange::redistribute(ParticleStore& particles, ContactHistoryByOwner&
   comm_.agree(outside);
 
   // Ghosts: copies of each particle another rank's brick wants (GhostReach: its own
-  // radius, that brick's largest and the skin).
+  // radius, the largest of one of that brick's size bands and the skin, from the band's centres).
   sent_to_ = ghost_lists(particles, own, bricks_, gathered_ghost_reach(particles, own, skin_m_, comm_), me);
   for (std::size_t r = 0; r < ranks; ++r)
     messages[r] = sent_to_[r].empty() ? std::vector<std::byte>{}

@@ -45,20 +45,20 @@ std::vector<std::vector<std::uint32_t>> migration_lists(const ParticleStore& loc
 std::vector<std::vector<std::uint32_t>> ghost_lists(const ParticleStore& local, std::size_t count,
                                                     const RecursiveBisection& bricks, const GhostReach& reach,
                                                     int this_rank) {
-  if (reach.largest_radius_m.size() != static_cast<std::size_t>(bricks.ranks()))
-    throw SimulationError(fmt::format("a ghost reach for {} bricks, of {}", reach.largest_radius_m.size(), bricks.ranks()));
+  if (reach.bricks() != static_cast<std::size_t>(bricks.ranks()))
+    throw SimulationError(fmt::format("a ghost reach for {} bricks, of {}", reach.bricks(), bricks.ranks()));
   std::vector<std::vector<std::uint32_t>> to_rank(static_cast<std::size_t>(bricks.ranks()));
   for (std::size_t p = 0; p < count; ++p)
     for (int r = 0; r < bricks.ranks(); ++r)
-      if (r != this_rank && reach.wanted(bricks, r, local.position_m[p], local.radius_m[p]))
+      if (r != this_rank && reach.wanted(r, local.position_m[p], local.radius_m[p]))
         to_rank[static_cast<std::size_t>(r)].push_back(static_cast<std::uint32_t>(p));
   return to_rank;
 }
 
 GhostReach gathered_ghost_reach(const ParticleStore& local, std::size_t count, double skin_m, const Communicator& comm) {
-  double largest = 0.0;
-  for (std::size_t p = 0; p < count; ++p) largest = std::max(largest, local.radius_m[p]);
-  return GhostReach{skin_m, comm.value_of_every_rank(largest)};
+  const auto mine = radius_bands(std::span<const Vec3>(local.position_m.data(), count),
+                                 std::span<const double>(local.radius_m.data(), count));
+  return GhostReach{skin_m, bands_of_values(comm.values_of_every_rank(band_values(mine)))};
 }
 
 std::size_t migrate_particles(ParticleStore& local, const RecursiveBisection& bricks, const Communicator& comm) {

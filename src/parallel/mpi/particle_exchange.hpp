@@ -26,8 +26,8 @@ std::vector<std::vector<std::uint32_t>> ghost_lists(const ParticleStore& local, 
                                                     int this_rank);
 
 /// The GhostReach of a run's bricks for a pair skin of `skin_m` (2 h_max), each rank's
-/// largest radius among the first `count` particles of `local` (its own) gathered from
-/// every rank: one collective.
+/// radius bands of the first `count` particles of `local` (its own) gathered from every
+/// rank: one collective.
 GhostReach gathered_ghost_reach(const ParticleStore& local, std::size_t count, double skin_m, const Communicator& comm);
 
 /// Sends every particle of `local` whose position lies in another rank's brick to that

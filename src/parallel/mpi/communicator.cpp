@@ -120,7 +120,7 @@ double Communicator::max(double value) const {
   return largest;
 }
 
-std::vector<double> Communicator::values_of_every_rank(std::span<const double> mine) const {
+std::vector<double> Communicator::equal_counts_of_every_rank(std::span<const double> mine) const {
   if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     throw SimulationError(fmt::format("{} values for each rank are more than MPI's int counts", mine.size()));
   const TimedIn timed(tally_);

@@ -36,9 +36,10 @@ class Communicator {
   std::uint64_t sum(std::uint64_t value) const;
   /// The largest over the ranks.
   double max(double value) const;
-  /// Every rank's values on every rank, by rank, one after the other (one collective;
-  /// every rank gives as many).
-  std::vector<double> values_of_every_rank(std::span<const double> mine) const;
+  /// Every rank's values on every rank, by rank, one after the other (one collective).
+  /// Every rank must give as many (HaloExchange::values_of_every_rank takes any count, in
+  /// two collectives).
+  std::vector<double> equal_counts_of_every_rank(std::span<const double> mine) const;
   /// The bitwise or over the ranks.
   std::uint32_t bits_or(std::uint32_t value) const;
   /// Every rank's bytes on rank `root`, by rank (the other ranks get nothing).

@@ -58,7 +58,7 @@ std::vector<std::vector<std::uint32_t>> ghost_lists(const ParticleStore& local, 
 GhostReach gathered_ghost_reach(const ParticleStore& local, std::size_t count, double skin_m, const Communicator& comm) {
   const auto mine = radius_bands(std::span<const Vec3>(local.position_m.data(), count),
                                  std::span<const double>(local.radius_m.data(), count));
-  return GhostReach{skin_m, bands_of_values(comm.values_of_every_rank(band_values(mine)))};
+  return GhostReach{skin_m, bands_of_values(comm.equal_counts_of_every_rank(band_values(mine)))};
 }
 
 std::size_t migrate_particles(ParticleStore& local, const RecursiveBisection& bricks, const Communicator& comm) {

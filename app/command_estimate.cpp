@@ -123,6 +123,7 @@ nlohmann::json over_ranks_json(const StageCost& c, const EstimateCommandOptions&
                     {"efficiency", o.step.efficiency},
                     {"gathers_at_most", o.gathers},
                     {"gather_s", o.gather_s},
+                    {"merge_s", o.merge_s},
                     {"predicted_wall_s", o.predicted_wall_s}});
   }
   return rows;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace regodem {
 
@@ -58,38 +60,79 @@ MeasureRegion cylinder_band(const Vec3& base_m, const Vec3& unit_axis, double ra
   return r;
 }
 
+void TemperatureAccumulator::merge(const TemperatureAccumulator& other) {
+  if (other.count_ == 0) return;
+  min_K_ = count_ == 0 ? other.min_K_ : std::min(min_K_, other.min_K_);
+  max_K_ = count_ == 0 ? other.max_K_ : std::max(max_K_, other.max_K_);
+  count_ += other.count_;
+  crossed_ += other.crossed_;
+  sum_K_.merge(other.sum_K_);
+}
+
 TemperatureStatistics TemperatureAccumulator::result() const {
   TemperatureStatistics s;
   s.count = count_;
   s.crossed = crossed_;
   if (count_ > 0) {
-    s.mean_K = sum_K_ / static_cast<double>(count_);
+    s.mean_K = sum_K_.value() / static_cast<double>(count_);
     s.min_K = min_K_;
     s.max_K = max_K_;
   }
   return s;
 }
 
-TemperatureStatistics region_statistics(const ParticleStore& particles, const MeasureRegion& region,
-                                        const Vec3& offset_m, std::optional<double> threshold_K) {
+void TemperatureAccumulator::append_to(std::vector<double>& out) const {
+  // Counts below 2^53 are exact as doubles.
+  out.insert(out.end(), {static_cast<double>(count_), static_cast<double>(crossed_), min_K_, max_K_});
+  sum_K_.append_to(out);
+}
+
+TemperatureAccumulator TemperatureAccumulator::read_from(std::span<const double> in, std::size_t& at) {
+  if (at + 4 > in.size())
+    throw std::invalid_argument("a temperature accumulator's record at " + std::to_string(at) + " is cut short");
+  TemperatureAccumulator a;
+  a.count_ = static_cast<std::size_t>(in[at]);
+  a.crossed_ = static_cast<std::size_t>(in[at + 1]);
+  a.min_K_ = in[at + 2];
+  a.max_K_ = in[at + 3];
+  at += 4;
+  a.sum_K_ = ExactSum::read_from(in, at);
+  return a;
+}
+
+TemperatureAccumulator region_sums(const ParticleStore& particles, const MeasureRegion& region, const Vec3& offset_m,
+                                   std::optional<double> threshold_K, LeftOut left_out) {
   TemperatureAccumulator sum;
   const std::size_t n = particles.size();
   for (std::size_t i = 0; i < n; ++i) {
+    if (!left_out.empty() && left_out[i]) continue;
     if (!region.contains(particles.position_m[i] - offset_m)) continue;
     sum.add(particles.temperature_K[i], threshold_K && particles.peak_temperature_K[i] > *threshold_K);
   }
-  return sum.result();
+  return sum;
+}
+
+TemperatureStatistics region_statistics(const ParticleStore& particles, const MeasureRegion& region,
+                                        const Vec3& offset_m, std::optional<double> threshold_K) {
+  return region_sums(particles, region, offset_m, threshold_K).result();
+}
+
+BandSums band_sums(const ParticleStore& particles, const MeasureRegion& in_band, const MeasureRegion& out_band,
+                   const Vec3& offset_m, LeftOut left_out) {
+  BandSums sums;
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    if (!left_out.empty() && left_out[i]) continue;
+    const Vec3 x = particles.position_m[i] - offset_m;
+    if (in_band.contains(x)) sums.in.add(particles.temperature_K[i], false);
+    if (out_band.contains(x)) sums.out.add(particles.temperature_K[i], false);
+  }
+  return sums;
 }
 
 BandTemperatures band_temperatures(const ParticleStore& particles, const MeasureRegion& in_band,
                                    const MeasureRegion& out_band, const Vec3& offset_m) {
-  TemperatureAccumulator in, out;
-  for (std::size_t i = 0; i < particles.size(); ++i) {
-    const Vec3 x = particles.position_m[i] - offset_m;
-    if (in_band.contains(x)) in.add(particles.temperature_K[i], false);
-    if (out_band.contains(x)) out.add(particles.temperature_K[i], false);
-  }
-  return {in.result(), out.result()};
+  const BandSums sums = band_sums(particles, in_band, out_band, offset_m);
+  return {sums.in.result(), sums.out.result()};
 }
 
 }  // namespace regodem

@@ -6,9 +6,13 @@
 // passes the wall's translation since the start as `offset_m` (the region is given
 // where it is at the start).
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
+#include <vector>
 
+#include "core/exact_sum.hpp"
 #include "core/particle_store.hpp"
 
 namespace regodem {
@@ -59,26 +63,41 @@ struct TemperatureStatistics {
   }
 };
 
-/// Sums temperatures one particle at a time.
+/// Sums temperatures one particle at a time. The sum is exact (core/exact_sum.hpp), so
+/// the mean of the same particles is the same bits in any order, and the partial sums of
+/// several MPI ranks merge into the sum of all.
 class TemperatureAccumulator {
  public:
   void add(double temperature_K, bool crossed) {
     ++count_;
-    sum_K_ += temperature_K;
+    sum_K_.add(temperature_K);
     min_K_ = count_ == 1 ? temperature_K : (temperature_K < min_K_ ? temperature_K : min_K_);
     max_K_ = count_ == 1 ? temperature_K : (temperature_K > max_K_ ? temperature_K : max_K_);
     crossed_ += crossed ? 1 : 0;
   }
+  /// Adds another accumulator's particles.
+  void merge(const TemperatureAccumulator& other);
   TemperatureStatistics result() const;
+  /// For a message between ranks (as ExactSum's).
+  void append_to(std::vector<double>& out) const;
+  static TemperatureAccumulator read_from(std::span<const double> in, std::size_t& at);
 
  private:
   std::size_t count_ = 0, crossed_ = 0;
-  double sum_K_ = 0.0, min_K_ = 0.0, max_K_ = 0.0;
+  ExactSum sum_K_;
+  double min_K_ = 0.0, max_K_ = 0.0;
 };
+
+/// Particles a measurement leaves out, one flag per particle: in a run over MPI ranks the
+/// ghosts, which their own ranks count. Empty: none.
+using LeftOut = std::span<const std::uint8_t>;
 
 /// Mean, min, max temperature and count of the particles whose centre lies in the
 /// region moved by offset_m; with a threshold, how many of them have a peak
 /// temperature above it (ParticleStore::peak_temperature_K). One pass over the particles.
+TemperatureAccumulator region_sums(const ParticleStore& particles, const MeasureRegion& region,
+                                   const Vec3& offset_m = {}, std::optional<double> threshold_K = std::nullopt,
+                                   LeftOut left_out = {});
 TemperatureStatistics region_statistics(const ParticleStore& particles, const MeasureRegion& region,
                                         const Vec3& offset_m = {},
                                         std::optional<double> threshold_K = std::nullopt);
@@ -89,6 +108,11 @@ struct BandTemperatures {
   TemperatureStatistics in, out;
   double difference_K() const { return in.mean_K - out.mean_K; }
 };
+struct BandSums {
+  TemperatureAccumulator in, out;
+};
+BandSums band_sums(const ParticleStore& particles, const MeasureRegion& in_band, const MeasureRegion& out_band,
+                   const Vec3& offset_m = {}, LeftOut left_out = {});
 BandTemperatures band_temperatures(const ParticleStore& particles, const MeasureRegion& in_band,
                                    const MeasureRegion& out_band, const Vec3& offset_m = {});
 

@@ -32,5 +32,9 @@ struct ProfileGeometry {
 /// the profile's offset_m (a profile that moves with a wall).
 std::vector<TemperatureStatistics> temperature_profile(const ParticleStore& particles,
                                                        const ProfileGeometry& profile, const Vec3& offset_m = {});
+/// The same as sums, which several ranks' merge, leaving out the flagged particles.
+std::vector<TemperatureAccumulator> temperature_profile_sums(const ParticleStore& particles,
+                                                             const ProfileGeometry& profile, const Vec3& offset_m = {},
+                                                             LeftOut left_out = {});
 
 }  // namespace regodem

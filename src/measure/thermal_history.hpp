@@ -6,8 +6,13 @@
 // checkpoints; the heat update calls record_thermal_history() for each particle.
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <span>
+#include <vector>
 
+#include "core/exact_sum.hpp"
 #include "core/particle_store.hpp"
+#include "measure/measure_region.hpp"
 
 namespace regodem {
 
@@ -38,5 +43,24 @@ struct ThermalHistorySummary {
   double crossed_fraction() const;
 };
 ThermalHistorySummary thermal_history_summary(const ParticleStore& particles, double threshold_K);
+
+/// The summary's parts, which several MPI ranks' merge (the sum of times is exact, so
+/// the mean does not depend on the particles' order).
+class ThermalHistorySums {
+ public:
+  void add(double peak_K, double time_above_s, bool crossed);
+  void merge(const ThermalHistorySums& other);
+  ThermalHistorySummary result() const;
+  /// For a message between ranks (as ExactSum's).
+  void append_to(std::vector<double>& out) const;
+  static ThermalHistorySums read_from(std::span<const double> in, std::size_t& at);
+
+ private:
+  std::size_t particles_ = 0, crossed_ = 0;
+  double peak_max_K_ = -std::numeric_limits<double>::infinity(), time_max_s_ = 0.0;
+  ExactSum time_sum_s_;
+};
+/// Over the particles not flagged in left_out (measure_region.hpp).
+ThermalHistorySums thermal_history_sums(const ParticleStore& particles, double threshold_K, LeftOut left_out = {});
 
 }  // namespace regodem

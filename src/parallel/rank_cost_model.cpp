@@ -32,6 +32,16 @@ CodeTraffic code_traffic(bool bonds, bool removes_lost_particles) {
   t.gathered_bytes_per_particle = bytes_per_particle(ParticleTransfer::whole);
   t.bytes_per_history_entry = sizeof(SavedContact);
   t.bytes_per_bond = bytes_per_bond();
+  // Counted in stage_runner's time_series_row, not measured: each sum over the particles
+  // and each largest value is its own all-gather (a count and the data), or one round:
+  // the energies (kinetic twice over, potential, bonds' stored, and again inside the
+  // audit's balance), temperatures, thermal energy and history, bond counts, the fastest
+  // impact, the heat step's stability check (with the lumped walls' conductance).
+  t.collectives_per_sample = 34;
+  t.collectives_per_measurement = 2;
+  // An exact sum travels as 4 doubles and its few nonzero 32-bit digits (about 4).
+  t.merged_bytes_per_sample = 20 * 8 * sizeof(double);
+  t.merged_bytes_per_statistic = 12 * sizeof(double);
   return t;
 }
 
@@ -164,6 +174,12 @@ double project_gather_s(double particles, double bytes_per_particle, int ranks, 
   constexpr double collectives_per_gather = 6.0;
   return collectives_per_gather * collective_rounds(ranks) * network.latency_s +
          particles * bytes_per_particle / network.bandwidth_bytes_per_s + one_process_step_s;
+}
+
+double project_merge_s(int collectives, double bytes_per_rank, int ranks, const NetworkModel& network) {
+  if (ranks <= 1) return 0.0;
+  return collectives * collective_rounds(ranks) * network.latency_s +
+         static_cast<double>(ranks) * bytes_per_rank / network.bandwidth_bytes_per_s;
 }
 
 }  // namespace regodem

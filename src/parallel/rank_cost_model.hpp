@@ -39,6 +39,12 @@ struct CodeTraffic {
   std::size_t gathered_bytes_per_particle = 0;  // a particle's fields handed to every rank at a gather
   std::size_t bytes_per_history_entry = 0;      // a contact's history, sent with its owner
   std::size_t bytes_per_bond = 0;               // a bond, sent with its ends
+  // A time-series sample and a measurement merge each rank's sums over its own particles
+  // (Simulation::merge_over_ranks): latency-bound all-gathers of small messages.
+  int collectives_per_sample = 0;
+  int collectives_per_measurement = 0;
+  std::size_t merged_bytes_per_sample = 0;       // what one rank sends
+  std::size_t merged_bytes_per_statistic = 0;    // a region's, or a profile bin's, sums
 };
 /// The traffic of this build of RegoDEM, for a run with bonds or not and removing the
 /// grains that leave its domain or not (each adds agreements to a build).
@@ -84,13 +90,17 @@ RankStepCost project_step(const RankShares& shares, const OneProcessStep& one, c
                           const CodeTraffic& traffic);
 
 /// A gather (every rank given every particle, where a run reads or adds particles:
-/// samples, measurements, snapshots, insertions): three all-gathers (six collectives:
+/// snapshots, insertions, checkpoints, a stage's end): three all-gathers (six collectives:
 /// the particles, bond breaks, impacts) moving `particles` of `bytes_per_particle` each
 /// (fields, contact histories, bonds), then every rank's lists rebuilt over all of them,
 /// counted as one step of one process. The build the next step makes to split them again
 /// is not charged (a build's collectives and exchanges, small beside that step).
 double project_gather_s(double particles, double bytes_per_particle, int ranks, double one_process_step_s,
                         const NetworkModel& network);
+
+/// One merge of every rank's sums (a sample's or a measurement's): `collectives`
+/// all-gathers, every rank receiving every rank's `bytes_per_rank`.
+double project_merge_s(int collectives, double bytes_per_rank, int ranks, const NetworkModel& network);
 
 /// Weak scaling: every rank holds an interior brick of a bed that grows with the ranks,
 /// `own` particles each, with `ghosts` from min(26, ranks - 1) partners (its face, edge and

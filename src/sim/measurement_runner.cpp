@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <stdexcept>
-
+#include <array>
 #include <limits>
 #include <optional>
+#include <span>
+#include <stdexcept>
 
+#include "measure/temperature_profile.hpp"
 #include "measure/thermal_history.hpp"
 #include "sim/simulation.hpp"
 #include "sim/time_scale.hpp"
@@ -26,6 +28,22 @@ std::optional<double> threshold_of(const Simulation& sim) {
 
 void add_temperatures(std::vector<double>& row, const TemperatureStatistics& s) {
   row.insert(row.end(), {s.mean_K, s.min_K, s.max_K});
+}
+
+// Each rank's own particles summed, the sums merged over the ranks (sim.merge_over_ranks):
+// one process's statistics, the same bits on any rank count.
+TemperatureStatistics region_over_ranks(const Simulation& sim, const MeasureRegion& region, const Vec3& offset,
+                                        std::optional<double> threshold_K = std::nullopt) {
+  TemperatureAccumulator sums = region_sums(sim.particles, region, offset, threshold_K, sim.left_out());
+  sim.merge_over_ranks(std::span<TemperatureAccumulator>(&sums, 1));
+  return sums.result();
+}
+
+BandTemperatures band_over_ranks(const Simulation& sim, const Measurement& m, const Vec3& offset) {
+  BandSums sums = band_sums(sim.particles, m.band_in, m.band_out, offset, sim.left_out());
+  std::array<TemperatureAccumulator, 2> both{sums.in, sums.out};
+  sim.merge_over_ranks(std::span<TemperatureAccumulator>(both));
+  return {both[0].result(), both[1].result()};
 }
 
 }  // namespace
@@ -69,12 +87,12 @@ MeasurementTable measurement_table(const Measurement& m, const Simulation& sim) 
 double measured_value(const Measurement& m, const Simulation& sim, MeasuredQuantity quantity) {
   const Vec3 offset = offset_of(sim, m);
   if (m.kind == MeasurementKind::band) {
-    const BandTemperatures b = band_temperatures(sim.particles, m.band_in, m.band_out, offset);
+    const BandTemperatures b = band_over_ranks(sim, m, offset);
     return quantity == MeasuredQuantity::T_in    ? b.in.mean_K
            : quantity == MeasuredQuantity::T_out ? b.out.mean_K
                                                  : b.difference_K();
   }
-  const TemperatureStatistics s = region_statistics(sim.particles, m.region, offset);
+  const TemperatureStatistics s = region_over_ranks(sim, m.region, offset);
   return quantity == MeasuredQuantity::min ? s.min_K : quantity == MeasuredQuantity::max ? s.max_K : s.mean_K;
 }
 
@@ -98,7 +116,7 @@ std::vector<std::vector<double>> measurement_rows(const Measurement& m, const Si
   switch (m.kind) {
     case MeasurementKind::region: {
       const std::optional<double> threshold = threshold_of(sim);
-      const TemperatureStatistics s = region_statistics(sim.particles, m.region, offset, threshold);
+      const TemperatureStatistics s = region_over_ranks(sim, m.region, offset, threshold);
       std::vector<double> row = lead;
       if (heat) add_temperatures(row, s);
       row.push_back(static_cast<double>(s.count));
@@ -107,7 +125,7 @@ std::vector<std::vector<double>> measurement_rows(const Measurement& m, const Si
       break;
     }
     case MeasurementKind::band: {
-      const BandTemperatures b = band_temperatures(sim.particles, m.band_in, m.band_out, offset);
+      const BandTemperatures b = band_over_ranks(sim, m, offset);
       std::vector<double> row = lead;
       row.insert(row.end(), {b.in.mean_K, b.out.mean_K, b.difference_K(), static_cast<double>(b.in.count),
                              static_cast<double>(b.out.count)});
@@ -115,7 +133,10 @@ std::vector<std::vector<double>> measurement_rows(const Measurement& m, const Si
       break;
     }
     case MeasurementKind::profile: {
-      const std::vector<TemperatureStatistics> bins = temperature_profile(sim.particles, m.profile, offset);
+      std::vector<TemperatureAccumulator> sums = temperature_profile_sums(sim.particles, m.profile, offset, sim.left_out());
+      sim.merge_over_ranks(std::span<TemperatureAccumulator>(sums));
+      std::vector<TemperatureStatistics> bins;
+      for (const TemperatureAccumulator& bin : sums) bins.push_back(bin.result());
       for (std::size_t k = 0; k < bins.size(); ++k) {
         std::vector<double> row = lead;
         row.push_back(m.profile.bin_centre_m(k));
@@ -140,7 +161,9 @@ std::vector<SeriesColumn> thermal_history_columns(const Simulation& sim) {
 std::vector<double> thermal_history_row(const Simulation& sim) {
   const std::optional<double> threshold = threshold_of(sim);
   if (!threshold) return {};
-  const ThermalHistorySummary s = thermal_history_summary(sim.particles, *threshold);
+  ThermalHistorySums sums = thermal_history_sums(sim.particles, *threshold, sim.left_out());
+  sim.merge_over_ranks(std::span<ThermalHistorySums>(&sums, 1));
+  const ThermalHistorySummary s = sums.result();
   return {s.peak_temperature_max_K, s.crossed_fraction(), s.time_above_threshold_mean_s,
           TimeScale{sim.settings().heat.time_scale_factor}.real_time_s(s.time_above_threshold_mean_s)};
 }

@@ -265,31 +265,50 @@ std::uint64_t periodic_events(const SnapshotSchedule& schedule, const Stage& sta
   return 0;
 }
 
-/// How often a run over ranks gathers every particle on every rank in this stage, at
-/// most (StageRunner: wherever it reads or adds particles; events at one step share one).
-std::uint64_t planned_gathers(const Stage& stage, const StageCost& cost, const StagePlan& plan, std::size_t s,
-                              double start_s) {
-  if (stage.freezes_mechanics()) return 1;  // gathered for the whole stage
+/// What a run over ranks does between steps in this stage, at most (StageRunner; events
+/// at one step share one): gather every particle on every rank (snapshots, insertion
+/// attempts, bond forming, the end), or merge each rank's sums (samples, measurements,
+/// the checks of a measured end).
+struct PlannedEvents {
+  std::uint64_t gathers = 0;
+  std::uint64_t samples = 0;
+  double merged_statistics = 0.0;  // regions' and profile bins' sums merged, over the stage
+  std::uint64_t measurement_merges = 0;
+};
+
+PlannedEvents planned_events(const Stage& stage, const StageCost& cost, const StagePlan& plan, std::size_t s,
+                             double start_s) {
+  PlannedEvents events;
+  if (stage.freezes_mechanics()) {
+    events.gathers = 1;  // gathered for the whole stage
+    return events;
+  }
   // The time series' samples, at the runner's default interval when none is given.
   double sample_interval = plan.sample_interval_s > 0.0 ? plan.sample_interval_s
                            : stage.until_settled         ? 0.01
                                                          : cost.simulated_s / 100.0;
   sample_interval = std::max(sample_interval, cost.step_s);
-  std::uint64_t gathers = 1 + static_cast<std::uint64_t>(std::ceil(cost.simulated_s / sample_interval));  // + the end
-  gathers += periodic_events(plan.snapshots, stage, cost);
+  events.samples = 1 + static_cast<std::uint64_t>(std::ceil(cost.simulated_s / sample_interval));  // + the end
+  events.gathers = 1 + periodic_events(plan.snapshots, stage, cost);  // the end, the snapshots
   for (const Measurement& m : plan.measurements.items) {
-    gathers += periodic_events(m.schedule.periodic, stage, cost);
-    for (const double t : m.schedule.at_times_s) gathers += t >= start_s && t < start_s + cost.simulated_s ? 1 : 0;
-    if (stage.ends_at_depth()) gathers += m.schedule.at_depths_m.size();  // as the periodic ones by depth
+    std::uint64_t takes = periodic_events(m.schedule.periodic, stage, cost);
+    for (const double t : m.schedule.at_times_s) takes += t >= start_s && t < start_s + cost.simulated_s ? 1 : 0;
+    if (stage.ends_at_depth()) takes += m.schedule.at_depths_m.size();  // as the periodic ones by depth
+    if (m.schedule.with_time_series()) takes += events.samples;
+    const double statistics = m.kind == MeasurementKind::profile ? static_cast<double>(m.profile.bin_count())
+                              : m.kind == MeasurementKind::band  ? 2.0
+                                                                 : 1.0;
+    events.measurement_merges += takes;
+    events.merged_statistics += static_cast<double>(takes) * statistics;
   }
   for (const Insertion& ins : plan.insertions)
     if (ins.stage == s)
-      gathers += ins.rate_per_s > 0.0 && ins.interval_s > 0.0
-                     ? static_cast<std::uint64_t>(std::ceil(cost.simulated_s / ins.interval_s))
-                     : 1;
-  if (stage.ends_on_measurement()) gathers += cost.steps / 64;  // the target checked every 64 steps
-  if (stage.form_bonds) ++gathers;
-  return gathers;
+      events.gathers += ins.rate_per_s > 0.0 && ins.interval_s > 0.0
+                            ? static_cast<std::uint64_t>(std::ceil(cost.simulated_s / ins.interval_s))
+                            : 1;
+  if (stage.ends_on_measurement()) events.measurement_merges += cost.steps / 64;  // the target checked every 64 steps
+  if (stage.form_bonds) ++events.gathers;
+  return events;
 }
 
 /// The stage's sampled bed cut over each of options.ranks, and its cost there.
@@ -313,10 +332,10 @@ void project_over_ranks(StageCost& cost, const Simulation& sim, const StagePlan&
   one.builds_per_step = cost.builds_per_step;
   const Domain& domain = sim.settings().domain;
   const std::vector<double> work = sim.particle_work();
-  const std::uint64_t gathers = planned_gathers(stage, cost, plan, s, start_s);
+  const PlannedEvents events = planned_events(stage, cost, plan, s, start_s);
   for (const int ranks : options.ranks) {
     StageOverRanks over;
-    over.gathers = gathers;
+    over.gathers = events.gathers;
     if (stage.freezes_mechanics()) {  // a static bed is stepped gathered, as one process
       over.step.ranks = ranks;
       over.step.efficiency = 1.0 / ranks;
@@ -326,8 +345,16 @@ void project_over_ranks(StageCost& cost, const Simulation& sim, const StagePlan&
                                                 sim.particles.radius_m, work, sim.ghost_skin_m(), ranks);
       over.step = project_step(shares, one, options.network, traffic);
       over.gather_s = project_gather_s(one.particles, gathered_bytes_per_particle, ranks, one.step_s, options.network);
-      over.predicted_wall_s =
-          static_cast<double>(cost.steps) * over.step.step_s + static_cast<double>(gathers) * over.gather_s;
+      over.merge_s =
+          static_cast<double>(events.samples) *
+              project_merge_s(traffic.collectives_per_sample, static_cast<double>(traffic.merged_bytes_per_sample),
+                              ranks, options.network) +
+          static_cast<double>(events.measurement_merges) *
+              project_merge_s(traffic.collectives_per_measurement, 0.0, ranks, options.network) +
+          project_merge_s(0, events.merged_statistics * static_cast<double>(traffic.merged_bytes_per_statistic), ranks,
+                          options.network);
+      over.predicted_wall_s = static_cast<double>(cost.steps) * over.step.step_s +
+                              static_cast<double>(events.gathers) * over.gather_s + over.merge_s;
     }
     cost.over_ranks.push_back(over);
   }

@@ -35,9 +35,10 @@ struct EstimateOptions {
 /// A stage on N ranks (src/parallel/rank_cost_model.hpp).
 struct StageOverRanks {
   RankStepCost step;              // one mechanical step, on the slowest rank
-  std::uint64_t gathers = 0;      // at most: samples, measurements, snapshots, insertion attempts, checks
+  std::uint64_t gathers = 0;      // at most: snapshots, insertion attempts, bond forming, the end
   double gather_s = 0.0;          // each
-  double predicted_wall_s = 0.0;  // steps x step + gathers x gather (+ the static bed's setup)
+  double merge_s = 0.0;           // the samples', measurements' and measured ends' merged sums, in all
+  double predicted_wall_s = 0.0;  // steps x step + gathers x gather + merges (+ the static bed's setup)
 };
 
 /// How sure a stage's number of steps is.

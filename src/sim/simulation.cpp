@@ -1001,7 +1001,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 }
 
 double Simulation::translational_kinetic_energy_J() const {
-  double sum = 0.0;
+  ExactSum sum;
   for (std::size_t i = 0; i < particles.size(); ++i)
     if (particles.inv_mass_per_kg[i] > 0.0 && !is_ghost(i))
       sum += 0.5 * particles.mass_kg[i] * norm2(particles.velocity_m_per_s[i]);
@@ -1009,7 +1009,7 @@ double Simulation::translational_kinetic_energy_J() const {
 }
 
 double Simulation::rotational_kinetic_energy_J() const {
-  double sum = 0.0;
+  ExactSum sum;
   for (std::size_t i = 0; i < particles.size(); ++i)
     if (particles.inv_inertia[i] > 0.0 && !is_ghost(i))
       sum += 0.5 * norm2(particles.angular_velocity_rad_per_s[i]) / particles.inv_inertia[i];
@@ -1017,9 +1017,9 @@ double Simulation::rotational_kinetic_energy_J() const {
 }
 
 double Simulation::gravitational_potential_energy_J() const {
-  double sum = 0.0;
+  ExactSum sum;
   for (std::size_t i = 0; i < particles.size(); ++i)
-    if (!is_ghost(i)) sum -= particles.mass_kg[i] * dot(settings_.gravity_m_per_s2, particles.position_m[i]);
+    if (!is_ghost(i)) sum += -particles.mass_kg[i] * dot(settings_.gravity_m_per_s2, particles.position_m[i]);
   return total_over_ranks(sum);
 }
 

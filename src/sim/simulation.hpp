@@ -4,12 +4,14 @@
 #include <cstdint>
 #include <exception>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "contact/bond_store.hpp"
 #include "contact/contact_parameters.hpp"
 #include "contact/neighbor_list.hpp"
+#include "core/exact_sum.hpp"
 #include "core/material.hpp"
 #include "core/particle_store.hpp"
 #include "geometry/wall_set.hpp"
@@ -230,8 +232,9 @@ class Simulation {
   /// yet over ranks (InputError). The walls' forces, torques, power and heat and the contact totals of each
   /// pass are summed over the ranks (in rank order: within round-off of one process's).
   /// Bonds travel with their ends (a bond across two ranks is held by both). The fastest impact
-  /// is each rank's until gather_everywhere() merges them; a run adds particles, books
-  /// the ledgers' reference energies and measures while gathered.
+  /// is each rank's until gather_everywhere() or merge_fastest_impact_over_ranks() merges
+  /// them; a run adds particles and books the ledgers' reference energies while gathered,
+  /// and measures split (each rank's own particles, the sums merged: merge_over_ranks).
   void distribute(ParticleHalo* halo);
   /// The particles this simulation steps (all of them in one process).
   std::size_t own_particle_count() const;
@@ -256,7 +259,7 @@ class Simulation {
   /// with every field and their contact history, the lists rebuilt for them, and the
   /// fastest impact of any rank; until distribute_again() this simulation is one process's
   /// (the same on every rank): what reads or changes the particles between steps
-  /// (insertion, samples, snapshots, checkpoints, a static-bed stage) sees the whole run.
+  /// (insertion, snapshots, checkpoints, a static-bed stage) sees the whole run.
   /// Nothing when not distributed.
   void gather_everywhere();
   /// After gather_everywhere(): the next step splits the particles again (each rank keeps
@@ -268,6 +271,28 @@ class Simulation {
   /// Under MPI, `mine` or-ed over the ranks (decisions a rank's clock or a signal makes,
   /// which every rank must take at the same step); `mine` in one process.
   std::uint32_t bits_over_ranks(std::uint32_t mine) const;
+  /// The particles a measurement leaves out: when distributed, the ghosts (one flag per
+  /// particle; their own ranks count them); empty otherwise.
+  std::span<const std::uint8_t> left_out() const {
+    return halo_ ? std::span<const std::uint8_t>(ghost_) : std::span<const std::uint8_t>();
+  }
+  /// When distributed, replaces each of this rank's partial sums (a region's, a profile
+  /// bin's: ExactSum, TemperatureAccumulator, ThermalHistorySums) by the merge of every
+  /// rank's, the same bits on every rank and as one process's (the sums are exact).
+  /// Nothing otherwise. Every rank must call it at the same point of the run.
+  template <class Partial>
+  void merge_over_ranks(std::span<Partial> partials) const {
+    if (!halo_) return;
+    std::vector<double> mine;
+    for (const Partial& p : partials) p.append_to(mine);
+    const std::vector<double> every = halo_->values_of_every_rank(mine);  // rank after rank
+    for (Partial& p : partials) p = Partial{};
+    for (std::size_t at = 0; at < every.size();)
+      for (Partial& p : partials) p.merge(Partial::read_from(every, at));
+  }
+  /// When distributed, the fastest impact of any rank (the larger key; on a tie the lowest
+  /// rank's) becomes every rank's, as at a gather. Every rank must call it at once.
+  void merge_fastest_impact_over_ranks();
 
   ParticleStore particles;
   MaterialTable materials;
@@ -297,8 +322,8 @@ class Simulation {
   /// Under MPI, after a contact pass: the walls' forces, torques, power and heat and the
   /// contacts' totals, each rank's own, summed over the ranks.
   void sum_totals_over_ranks();
-  /// A sum (in rank order) or largest value over the ranks; this rank's in one process.
-  double total_over_ranks(double mine) const;
+  /// The exact sum, or the largest value, over the ranks; this rank's in one process.
+  double total_over_ranks(ExactSum mine) const;
   double largest_over_ranks(double mine) const;
   /// Removes the particles outside the domain, their bonds and contact history.
   void remove_lost_particles();

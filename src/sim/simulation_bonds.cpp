@@ -8,6 +8,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <unordered_set>
 
@@ -39,6 +40,18 @@ void Simulation::configure_bonds(std::vector<BondParameters> kinds, std::vector<
 BondCounts Simulation::bond_counts() const {
   BondCounts c = bond_counts_;
   c.intact = bonds_.size();
+  if (!halo_) return c;
+  // Split: a bond is held by the ranks of both its ends, and counted (and its break
+  // recorded) by its first end's; the breaks since the split are each rank's until the
+  // next gather.
+  std::array<double, 3> mine{0.0, 0.0, 0.0};  // intact, broken in tension, in shear
+  for (std::size_t b = 0; b < bonds_.size(); ++b) mine[0] += is_ghost(bonds_.local_i[b]) ? 0.0 : 1.0;
+  for (std::size_t e = bond_breaks_at_split_; e < bond_breaks_.size(); ++e)
+    mine[bond_breaks_[e].mode == BondBreak::tension ? 1 : 2] += 1.0;
+  halo_->sum_in_rank_order(mine);  // counts: exact
+  c.intact = static_cast<std::size_t>(mine[0]);
+  c.broken_in_tension += static_cast<std::size_t>(mine[1]);
+  c.broken_in_shear += static_cast<std::size_t>(mine[2]);
   return c;
 }
 
@@ -131,10 +144,12 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
 }
 
 double Simulation::bond_elastic_energy_J() const {
-  double sum = 0.0;
+  // Split over ranks, each bond once: by its first end's rank.
+  ExactSum sum;
   for (std::size_t b = 0; b < bonds_.size(); ++b)
-    sum += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
-  return sum;
+    if (!is_ghost(bonds_.local_i[b]))
+      sum += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
+  return total_over_ranks(sum);
 }
 
 void Simulation::apply_bonds(double dt_s) {

@@ -49,14 +49,7 @@ void Simulation::gather_everywhere() {
   particles.remove_if(std::vector<char>(ghost_.begin(), ghost_.end()));
   halo_->gather_everywhere(particles, history, bonds_);
   gather_bond_breaks();
-  // The fastest impact of any rank (the larger key; on a tie the lowest rank's).
-  const ImpactRecord mine = fastest_impact_;
-  const std::vector<double> impacts = halo_->values_of_every_rank(std::array<double, 4>{
-      mine.key, mine.approach_speed_m_per_s, static_cast<double>(mine.wall_body), mine.time_s});
-  fastest_impact_ = ImpactRecord{};
-  for (std::size_t at = 0; at + 4 <= impacts.size(); at += 4)
-    fastest_impact_.merge(ImpactRecord{impacts[at], impacts[at + 1], static_cast<std::int32_t>(impacts[at + 2]),
-                                       impacts[at + 3]});
+  merge_fastest_impact_over_ranks();
   gathered_halo_ = halo_;
   halo_ = nullptr;
   ghost_.clear();
@@ -67,6 +60,17 @@ void Simulation::gather_everywhere() {
   // One process's lists over all particles: a checkpoint saves them; the forces came with
   // the particles, so the next step goes on from them as it would have.
   rebuild_neighbors(true);
+}
+
+void Simulation::merge_fastest_impact_over_ranks() {
+  if (!halo_) return;
+  const ImpactRecord mine = fastest_impact_;
+  const std::vector<double> impacts = halo_->values_of_every_rank(std::array<double, 4>{
+      mine.key, mine.approach_speed_m_per_s, static_cast<double>(mine.wall_body), mine.time_s});
+  fastest_impact_ = ImpactRecord{};
+  for (std::size_t at = 0; at + 4 <= impacts.size(); at += 4)
+    fastest_impact_.merge(ImpactRecord{impacts[at], impacts[at + 1], static_cast<std::int32_t>(impacts[at + 2]),
+                                       impacts[at + 3]});
 }
 
 void Simulation::gather_bond_breaks() {
@@ -275,9 +279,9 @@ void Simulation::sum_totals_over_ranks() {
   stats_.wall_contacts = static_cast<std::uint64_t>(take());
 }
 
-double Simulation::total_over_ranks(double mine) const {
-  if (halo_) halo_->sum_in_rank_order(std::span<double>(&mine, 1));
-  return mine;
+double Simulation::total_over_ranks(ExactSum mine) const {
+  merge_over_ranks(std::span<ExactSum>(&mine, 1));
+  return mine.value();
 }
 
 double Simulation::largest_over_ranks(double mine) const { return halo_ ? halo_->max_over_ranks(mine) : mine; }

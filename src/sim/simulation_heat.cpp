@@ -2,6 +2,9 @@
 // "Energy"): temperature updates after the contact pass, the energy ledger, and the
 // frozen conductance network that static-bed stages step on their own.
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
 #include <omp.h>
 
 #include <cmath>
@@ -21,10 +24,10 @@ double Simulation::particle_thermal_energy_J(std::size_t i) const {
 }
 
 double Simulation::thermal_energy_J() const {
-  double sum = 0.0;
+  ExactSum own;
   for (std::size_t i = 0; i < particles.size(); ++i)
-    if (!is_ghost(i)) sum += particle_thermal_energy_J(i);
-  sum = total_over_ranks(sum);
+    if (!is_ghost(i)) own += particle_thermal_energy_J(i);
+  double sum = total_over_ranks(own);
   for (const ThermalWall& w : wall_thermal) sum += w.stored_heat_J();  // the same on every rank
   return sum;
 }
@@ -213,8 +216,32 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
 
 double Simulation::thermal_stability_limit_s() {
   std::vector<int> wall_node, wall_boundary;
-  return StaticBedSolver(StaticBedMethod::explicit_euler, thermal_network(wall_node, wall_boundary))
-      .stability_limit_s();
+  ThermalNetwork network = thermal_network(wall_node, wall_boundary);
+  if (!halo_) return StaticBedSolver(StaticBedMethod::explicit_euler, std::move(network)).stability_limit_s();
+  // Split over ranks: min C / sum G over the nodes (StaticBedSolver::stability_limit_s).
+  // An own particle's every contact is listed here, so its sum is whole; a ghost's is a
+  // share (its own rank has the whole, and ghosts carry no heat capacity); a lumped
+  // wall's is this rank's share of its contacts, summed over the ranks.
+  std::vector<double> g(network.heat_capacity_J_per_K.size(), 0.0);
+  for (const ThermalNetwork::Edge& e : network.edges) {
+    g[e.a] += e.conductance_W_per_K;
+    g[e.b] += e.conductance_W_per_K;
+  }
+  for (const ThermalNetwork::BoundaryLink& link : network.boundary_links) g[link.node] += link.conductance_W_per_K;
+  double limit_s = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (!is_ghost(i) && g[i] > 0.0) limit_s = std::min(limit_s, network.heat_capacity_J_per_K[i] / g[i]);
+  std::vector<double> wall_g;
+  for (const int node : wall_node)
+    if (node >= 0) wall_g.push_back(g[static_cast<std::size_t>(node)]);
+  halo_->sum_in_rank_order(wall_g);
+  for (std::size_t b = 0, k = 0; b < wall_node.size(); ++b) {
+    if (wall_node[b] < 0) continue;
+    const double wall_sum = wall_g[k++];
+    if (wall_sum > 0.0)
+      limit_s = std::min(limit_s, network.heat_capacity_J_per_K[static_cast<std::size_t>(wall_node[b])] / wall_sum);
+  }
+  return -largest_over_ranks(-limit_s);
 }
 
 void Simulation::advance_frozen(double dt_s, const std::vector<double>& boundary_heat_in_by_body_J) {

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include "core/error.hpp"
+#include "measure/measure_region.hpp"
 #include "sim/measurement_runner.hpp"
 #include "sim/recent_rate.hpp"
 #include "sim/static_heat_stepper.hpp"
@@ -203,7 +205,7 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
 
 std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_index) {
   const auto& stats = sim.contact_statistics();
-  const double n = static_cast<double>(sim.particles.size());
+  const double n = static_cast<double>(sim.run_particle_count());
   const TimeScale scale{sim.settings().heat.time_scale_factor};
   const ImpactRecord& impact = sim.fastest_impact();
   std::vector<double> row = {
@@ -245,16 +247,17 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
       if (sim.walls.bodies[b].fed_or_spun()) row.push_back(audit.wall_work_by_body_J[b]);
   }
   if (!sim.heat_enabled()) return row;
-  double sum = 0.0, lowest = std::numeric_limits<double>::quiet_NaN(), highest = lowest;
-  for (double t : sim.particles.temperature_K) {
-    sum += t;
-    lowest = std::isnan(lowest) ? t : std::min(lowest, t);
-    highest = std::isnan(highest) ? t : std::max(highest, t);
-  }
+  // Every particle's temperature, each rank's own merged over the ranks when split.
+  TemperatureAccumulator temperatures;
+  const std::span<const std::uint8_t> ghosts = sim.left_out();
+  for (std::size_t i = 0; i < sim.particles.size(); ++i)
+    if (ghosts.empty() || !ghosts[i]) temperatures.add(sim.particles.temperature_K[i], false);
+  sim.merge_over_ranks(std::span<TemperatureAccumulator>(&temperatures, 1));
+  const TemperatureStatistics t = temperatures.result();
   const double energy = sim.thermal_energy_J();
   const ThermalLedger& ledger = sim.thermal_ledger();
   const double imbalance = energy - ledger.expected_energy_J();
-  row.insert(row.end(), {n > 0 ? sum / n : std::numeric_limits<double>::quiet_NaN(), lowest, highest, energy,
+  row.insert(row.end(), {t.mean_K, t.min_K, t.max_K, energy,
                          ledger.boundary_heat_in_J, ledger.generated_heat_J,
                          energy != 0.0 ? imbalance / std::abs(energy) : 0.0});
   const std::vector<double> history = thermal_history_row(sim);
@@ -402,14 +405,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     double steps_per_s = 0.0;
     std::uint64_t done = inside ? inside->done : 0;  // steps of this stage (thermal steps in a static-bed stage)
     last_progress_step = done;
-
     double last_sampled_time_s = inside ? inside->last_sampled_time_s : std::numeric_limits<double>::quiet_NaN();
-    auto sample = [&] {
-      observer.sample(time_series_row(sim, s));
-      measurements.with_time_series(sim, observer);
-      last_sampled_time_s = sim.time_s();
-      while (next_sample_s <= sim.time_s() + 0.5 * step_s) next_sample_s += sample_interval;
-    };
+
     const auto stage_clock = Clock::now();
     bool checkpoint_wanted = false;  // under MPI, at the next gather
     RecentRate recent_rate;  // a resumed stage times only its own steps
@@ -433,8 +430,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     };
 
     // The run's fastest impact is said once, when it first goes unresolved. Under MPI a
-    // rank's impacts reach the others (and rank 0, which writes) at the next gather, so
-    // the check runs after each gather as well as after each step.
+    // rank's impacts reach the others (and rank 0, which writes) at the next sample or
+    // gather, so the check runs after each of those as well as after each step.
     bool impact_noticed = !impacts_resolved(sim);
     const auto notice_unresolved_impact = [&] {
       if (impact_noticed || impacts_resolved(sim)) return;
@@ -442,6 +439,16 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
       impact_noticed = true;
     };
 
+    auto sample = [&] {
+      // Under MPI the sample and its measurements are sums over each rank's own
+      // particles, merged (exactly) over the ranks: nothing is gathered.
+      sim.merge_fastest_impact_over_ranks();
+      notice_unresolved_impact();
+      observer.sample(time_series_row(sim, s));
+      measurements.with_time_series(sim, observer);
+      last_sampled_time_s = sim.time_s();
+      while (next_sample_s <= sim.time_s() + 0.5 * step_s) next_sample_s += sample_interval;
+    };
     if (result == StageResult::finished) try {
       for (;;) {
         // Under MPI: the clock's decisions taken by all ranks at once, and the particles
@@ -455,11 +462,10 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
           decided = sim.bits_over_ranks(decided);
         }
         if (sim.distributed()) {
+          // Not the samples, measurements and measured ends: their sums are merged over
+          // the ranks.
           bool reads_particles = frozen.has_value() || (decided & stop_now) != 0 ||
-                                 sim.time_s() + 0.5 * step_s >= next_sample_s ||
-                                 snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m()) ||
-                                 measurements.due(sim, 0.5 * step_s) ||
-                                 (stage.ends_on_measurement() && done % check_every == 0);
+                                 snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m());
           for (const Insertion* ins : active)
             reads_particles = reads_particles || (!ins->finished && sim.time_s() + 0.5 * dt >= ins->next_attempt_s());
           if (reads_particles) {

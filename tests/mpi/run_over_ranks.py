@@ -4,14 +4,16 @@
 Usage: run_over_ranks.py REGODEM MPIEXEC WORK_DIRECTORY
 
 Bounds, stated before the runs:
-- the particles are stepped bit for bit alike on every rank count, so every particle
-  snapshot (.vtp), region table and profile is byte for byte the same, and so is every
-  time-series column but the walls' totals;
-- the walls' forces, torques and heat flows and the contacts' totals (stored, dissipated
-  and generated energy, the energy audit built on them) are sums over the ranks'
-  contacts, added in rank order (Communicator::sum_in_rank_order): they agree within
-  1e-9 of the column's largest magnitude (one rounding per pass, 1e-16 relative, over
-  < 1e5 passes);
+- the particles are stepped bit for bit alike on every rank count, and the samples,
+  regions and profiles are each rank's own particles summed exactly (core/exact_sum.hpp)
+  and merged over the ranks, with nothing gathered: every particle snapshot (.vtp),
+  region table and profile is byte for byte the same, and so is every time-series column
+  but the walls' totals;
+- the walls' forces, torques and heat flows (and the heat they brought in, the ledger's
+  boundary_heat_in) and the contacts' totals (stored, dissipated and generated energy,
+  the energy audit built on them) are sums over the ranks' contacts, added in rank order
+  (Communicator::sum_in_rank_order): they agree within 1e-9 of the column's largest
+  magnitude (one rounding per pass, 1e-16 relative, over < 1e5 passes);
 - the heat books close within 1e-9 of the heat on every rank count (a gather that lost
   or doubled heat would not);
 - grains that leave the domain (over_ranks_spill.yaml: most of its 160) are removed alike
@@ -39,7 +41,7 @@ SCENARIO = SCENARIOS / "over_ranks_small.yaml"  # 240 grains, all kept
 # Columns that are sums over the ranks' contacts (the walls' and the contacts' totals).
 SUMMED_OVER_RANKS = (".force_", ".torque_", ".heat_flow", ".heat_to_particles", ".thrust", ".drive_torque",
                      "elastic_energy", "spring_source", "dissipated_energy", "generated_heat", "wall_work",
-                     "mechanical_imbalance")
+                     "mechanical_imbalance", "boundary_heat_in")
 TIMEOUT_S = 900  # a run takes seconds alone; oversubscribed ranks beside a build take minutes
 failures = []
 
@@ -136,6 +138,17 @@ for ranks in (1, 2, 3):
 for ranks in (2, 3):
     compare_runs(runs[1], runs[ranks], f"{ranks} ranks against 1")
 
+# A stage that ends on a measurement (its target tested every 64 steps, each test a
+# merge of the ranks' sums, nothing gathered) ends at the same step on every rank count.
+measured = run_on_ranks("measured_end", SCENARIO, (1, 2, 3), "--set",
+                        "stages.press={name: press, until: {measurement: low, quantity: mean, rises_to: 370 K}, "
+                        "max_duration: 0.4 s}")
+ends = [json.loads((measured[r] / "summary.json").read_text())["stages"][1].get("end_time_s") for r in (1, 2, 3)]
+check(ends[0] is not None and 0.31 < ends[0] < 0.69, f"the measured end: the press stage ended at {ends[0]} s, "
+                                                      "not before its max_duration")
+for ranks in (2, 3):
+    compare_runs(measured[1], measured[ranks], f"measured end on {ranks} ranks against 1")
+
 # Grains lost over the edge of a table are removed on the rank that held them, the same
 # grains on every rank count, and leave the books of every rank alike.
 spills = run_on_ranks("spill", SCENARIOS / "over_ranks_spill.yaml", (1, 2, 3))
@@ -143,10 +156,12 @@ lost = last_value(spills[1], "particles_lost [-]")
 check(lost >= 100, f"the spill lost {lost:.0f} of its 160 grains, not most of them")
 for ranks in (2, 3):
     compare_runs(spills[1], spills[ranks], f"spill on {ranks} ranks against 1")
-# Sampled every step, every step follows a gather, where each rank still holds every
-# grain as its own when one leaves: it must still count once.
+# Sampled every step (each sample merged over the ranks, the particles split), with a
+# snapshot (a gather) every 16 steps: the build after a gather, where each rank still
+# holds every grain as its own when one leaves, must still count it once.
 every_step = run_on_ranks("spill_every_step", SCENARIOS / "over_ranks_spill.yaml", (1, 2),
-                          "--set", "output.interval=1e-9 s", "--set", "stages.pour.duration=0.2 s")
+                          "--set", "output.interval=1e-9 s", "--set", "output.snapshots.every_steps=16",
+                          "--set", "stages.pour.duration=0.2 s")
 check(last_value(every_step[1], "particles_lost [-]") >= 20, "the spill sampled every step lost too few grains")
 compare_runs(every_step[1], every_step[2], "spill sampled every step on 2 ranks against 1")
 

@@ -187,16 +187,12 @@ TEST(DistributedStep, TotalsAreSummedOverRanksAndALumpedCupCoolsAsInOneProcess) 
   EXPECT_EQ(sim.contact_statistics().particle_contacts, one.sim.contact_statistics().particle_contacts);
   EXPECT_EQ(sim.contact_statistics().wall_contacts, one.sim.contact_statistics().wall_contacts);
   EXPECT_GT(one.sim.contact_statistics().wall_contacts, 0u);
-  // The measurements over particles: sums of a few hundred terms of one sign agree to
-  // 1e-12 (the lumped cup's heat, in the thermal energy, to its 1e-9); extremes exactly.
-  EXPECT_NEAR(sim.translational_kinetic_energy_J(), one.sim.translational_kinetic_energy_J(),
-              1e-12 * one.sim.translational_kinetic_energy_J());
-  EXPECT_NEAR(sim.rotational_kinetic_energy_J(), one.sim.rotational_kinetic_energy_J(),
-              1e-12 * one.sim.rotational_kinetic_energy_J());
-  double largest_potential_J = 0.0;  // each grain's m g h at the domain's greatest height
-  for (const double mass : one.sim.particles.mass_kg) largest_potential_J += mass * 9.81 * 0.03;
-  EXPECT_NEAR(sim.gravitational_potential_energy_J(), one.sim.gravitational_potential_energy_J(),
-              1e-12 * largest_potential_J);
+  // The measurements over particles: exact sums (core/exact_sum.hpp) of bit-for-bit
+  // particles, so equal (the lumped cup's heat, in the thermal energy, to its 1e-9);
+  // extremes exactly.
+  EXPECT_EQ(sim.translational_kinetic_energy_J(), one.sim.translational_kinetic_energy_J());
+  EXPECT_EQ(sim.rotational_kinetic_energy_J(), one.sim.rotational_kinetic_energy_J());
+  EXPECT_EQ(sim.gravitational_potential_energy_J(), one.sim.gravitational_potential_energy_J());
   EXPECT_NEAR(sim.thermal_energy_J(), one.sim.thermal_energy_J(), 1e-9 * one.sim.thermal_energy_J());
   EXPECT_EQ(sim.max_speed_m_per_s(), one.sim.max_speed_m_per_s());
   EXPECT_EQ(sim.max_overlap_fraction(), one.sim.max_overlap_fraction());

@@ -160,7 +160,6 @@ void Simulation::rebuild_neighbors(bool history_saved) {
     history_saved = true;
     grid_particles = halo_->sum_over_ranks(own_particle_count());
     run_particles_ = grid_particles;
-    every_rank_holds_all_ = false;
     halo_build_pending_ = false;
   }
   // The grid is sized for the current particle count: the counting sort costs one pass
@@ -175,6 +174,7 @@ void Simulation::rebuild_neighbors(bool history_saved) {
   skin.time_step_s = settings_.time_step_s;
   skin.body_step_m = walls.surface_steps_m(time_s_, settings_.time_step_s);
   neighbors_.rebuild(particles, walls, grid_, skin, active_threads_, history_saved, halo_ ? &ghost_ : nullptr);
+  lists_outdated_ = false;
   walls.mark_neighbor_build();
   if (halo_) halo_->follow_sort(neighbors_.sort_order());  // the ghost flags followed it in the rebuild
   if (!bonds_.empty()) {  // the rebuild re-sorted the particles

@@ -478,6 +478,9 @@ class Simulation {
   bool every_rank_holds_all_ = false;     // distributed again since a gather, not yet built
   bool halo_build_pending_ = false;       // distributed since the last build
   std::vector<std::uint8_t> ghost_;       // per particle under MPI, else empty
+  // Under MPI, between a build's saving of the contact history and its new lists (set
+  // while a build that failed part way leaves the lists not matching the particles).
+  bool lists_outdated_ = false;
 
   BondStore bonds_;
   std::vector<BondParameters> bond_kinds_;

@@ -42,8 +42,9 @@ void Simulation::gather_everywhere() {
     every_rank_holds_all_ = false;
     return;
   }
-  // The contact history own particles hold, as a build would hand it to the halo.
-  neighbors_.save_history(particles);
+  // The contact history own particles hold, as a build would hand it to the halo (a
+  // build that failed part way already saved it: its lists no longer match the particles).
+  if (!lists_outdated_) neighbors_.save_history(particles);
   ghost_.resize(particles.size(), 0);
   ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
   particles.remove_if(std::vector<char>(ghost_.begin(), ghost_.end()));
@@ -162,11 +163,13 @@ bool Simulation::rebuild_everywhere(bool here, const std::exception_ptr& failed)
 
 void Simulation::redistribute_particles() {
   neighbors_.save_history(particles);
+  lists_outdated_ = true;  // from here until the lists are built again
   ghost_.resize(particles.size(), 0);
   // Own particles that left the domain go with the ghosts (domain.lost_particles: remove),
   // their heat and motion out of every rank's books (as remove_lost_particles does in one
   // process; the books are the run's on every rank), summed in rank order.
   if (settings_.lost_particles == LostParticles::remove) drop_lost_over_ranks();
+  every_rank_holds_all_ = false;  // the halo cuts the particles now
   ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
   const std::vector<double> every_work = particle_work();
   std::vector<double> work;  // the own particles'
@@ -174,7 +177,16 @@ void Simulation::redistribute_particles() {
   for (std::size_t i = 0; i < particles.size(); ++i)
     if (!ghost_[i]) work.push_back(every_work[i]);
   particles.remove_if(std::vector<char>(ghost_.begin(), ghost_.end()));
-  halo_->redistribute(particles, history, work, ghost_, bonds_);
+  try {
+    halo_->redistribute(particles, history, work, ghost_, bonds_);
+  } catch (...) {
+    // Every rank stopped at the same point (the halo agrees its errors), holding its own
+    // particles, no ghosts, and their history: kept so that the failed run can still be
+    // gathered and written (gather_everywhere).
+    ghost_.assign(particles.size(), 0);
+    if (history.owners() == particles.size()) neighbors_.set_saved_history(std::move(history));
+    throw;
+  }
   if (ghost_.size() != particles.size() || history.owners() != particles.size())
     throw SimulationError(fmt::format("the halo returned {} particles with {} ghost flags and {} histories",
                                       particles.size(), ghost_.size(), history.owners()));

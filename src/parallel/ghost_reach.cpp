@@ -22,6 +22,23 @@ void add_to(RadiusBand& band, const Vec3& x, double radius_m) {
 
 }  // namespace
 
+std::vector<int> GhostReach::bricks_near(const Brick& box, double largest_radius_m, int except) const {
+  std::vector<int> near;
+  for (std::size_t b = 0; b < bands.size(); ++b) {
+    const auto rank = static_cast<int>(b / kBandsPerBrick);
+    if (rank == except || (!near.empty() && near.back() == rank) || bands[b].largest_radius_m <= 0.0) continue;
+    // As wanted(): the particle's radius + the band's + the skin, added in that order.
+    if (bands[b].centres.distance_m(box) <= largest_radius_m + bands[b].largest_radius_m + skin_m) near.push_back(rank);
+  }
+  return near;
+}
+
+CentresBox centres_box(std::span<const Vec3> positions, std::span<const double> radii_m) {
+  RadiusBand all;  // one band of every radius
+  for (std::size_t p = 0; p < positions.size(); ++p) add_to(all, positions[p], radii_m[p]);
+  return {all.centres, all.largest_radius_m};
+}
+
 std::array<RadiusBand, GhostReach::kBandsPerBrick> radius_bands(std::span<const Vec3> positions,
                                                                 std::span<const double> radii_m) {
   std::array<RadiusBand, GhostReach::kBandsPerBrick> bands{};

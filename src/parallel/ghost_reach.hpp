@@ -45,7 +45,20 @@ struct GhostReach {
         return true;
     return false;
   }
+  /// The bricks, but `except`, that may want some particle of radius at most
+  /// `largest_radius_m` centred in `box`: every brick for which wanted() is true for such a
+  /// particle is among them (a band's box is no nearer to a point of `box` than to `box`).
+  /// A rank then asks wanted() of its neighbours only, not of every rank.
+  std::vector<int> bricks_near(const Brick& box, double largest_radius_m, int except) const;
 };
+
+/// The box of the centres `positions` (an empty box at the origin for none) and their
+/// largest radius.
+struct CentresBox {
+  Brick box{};
+  double largest_radius_m = 0.0;
+};
+CentresBox centres_box(std::span<const Vec3> positions, std::span<const double> radii_m);
 
 /// One brick's bands from its own particles.
 std::array<RadiusBand, GhostReach::kBandsPerBrick> radius_bands(std::span<const Vec3> positions,

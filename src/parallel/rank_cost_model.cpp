@@ -70,14 +70,33 @@ RankShares cut_into_bricks(const Brick& domain, std::span<const Vec3> points, st
   shares.ghost_work.assign(n, 0.0);
   shares.partners.assign(n, 0);
   std::vector<char> hears_from(n * n, 0);  // [receiver * n + sender]
+  // Each brick asks wanted() of the bricks near its own points only (as a run does).
+  std::vector<std::size_t> owner_of(points.size());
+  std::vector<std::vector<std::size_t>> own_points(n);
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    owner_of[p] = static_cast<std::size_t>(bricks.rank_of(points[p]));
+    own_points[owner_of[p]].push_back(p);
+  }
+  std::vector<std::vector<int>> near(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    std::vector<Vec3> x;
+    std::vector<double> radius;
+    for (const std::size_t p : own_points[r]) {
+      x.push_back(points[p]);
+      radius.push_back(radii_m[p]);
+    }
+    const CentresBox box = centres_box(x, radius);
+    if (!x.empty()) near[r] = reach.bricks_near(box.box, box.largest_radius_m, static_cast<int>(r));
+  }
   for (std::size_t p = 0; p < points.size(); ++p) {
     const double w = weights.empty() ? 1.0 : weights[p];
-    const auto owner = static_cast<std::size_t>(bricks.rank_of(points[p]));
+    const std::size_t owner = owner_of[p];
     ++shares.own[owner];
     shares.own_work[owner] += w;
     shares.total_work += w;
-    for (std::size_t r = 0; r < n; ++r) {
-      if (r == owner || !reach.wanted(static_cast<int>(r), points[p], radii_m[p])) continue;
+    for (const int near_rank : near[owner]) {
+      const auto r = static_cast<std::size_t>(near_rank);
+      if (!reach.wanted(near_rank, points[p], radii_m[p])) continue;
       ++shares.ghosts[r];
       shares.ghost_work[r] += w;
       hears_from[r * n + owner] = 1;

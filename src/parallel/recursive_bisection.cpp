@@ -23,6 +23,15 @@ double Brick::distance_m(const Vec3& x) const {
   return std::sqrt(d2);
 }
 
+double Brick::distance_m(const Brick& other) const {
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double outside = std::max({lo_m[a] - other.hi_m[a], 0.0, other.lo_m[a] - hi_m[a]});
+    d2 += outside * outside;
+  }
+  return std::sqrt(d2);
+}
+
 RecursiveBisection::RecursiveBisection(const Brick& domain, std::span<const Vec3> points,
                                        std::span<const double> weights, int ranks) {
   if (ranks < 1) throw InputError(fmt::format("a decomposition needs 1 or more ranks, got {}", ranks));

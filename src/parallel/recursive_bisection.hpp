@@ -23,6 +23,9 @@ struct Brick {
   double volume_m3() const { return (hi_m.x - lo_m.x) * (hi_m.y - lo_m.y) * (hi_m.z - lo_m.z); }
   /// The distance from x to the nearest point of the brick (0 inside).
   double distance_m(const Vec3& x) const;
+  /// The distance between the nearest points of the two bricks (0 where they touch):
+  /// never more than distance_m(x) for any x in `other` (the same rounding, monotone).
+  double distance_m(const Brick& other) const;
 };
 
 class RecursiveBisection {

@@ -3,6 +3,9 @@
 // limits (one rank is one process; a free network leaves the ghosts' extra work alone).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "parallel/ghost_reach.hpp"
 #include "parallel/rank_cost_model.hpp"
 
 namespace regodem {
@@ -75,6 +78,38 @@ TEST(RankCostModel, AGrainsReachIsItsRadiusItsSizeBandsLargestAndTheSkinFromTheB
     EXPECT_EQ(two.own[r], 500u);
     EXPECT_EQ(two.ghosts[r], 50u);
   }
+}
+
+// A brick asks only the bricks near its own grains (GhostReach::bricks_near): every brick
+// that wants one of its grains must be among them, and on 64 bricks of a cube most are not.
+TEST(RankCostModel, ABrickAsksOnlyTheBricksNearItsGrains) {
+  std::vector<Vec3> points = lattice();
+  std::vector<double> radius;
+  for (std::size_t p = 0; p < points.size(); ++p) radius.push_back(p % 7 == 0 ? 0.4 * d : 0.1 * d);
+  const RecursiveBisection bricks(cube, points, {}, 64);
+  const GhostReach reach{0.2 * d, radius_bands_by_brick(bricks, points, radius)};
+  std::size_t asked = 0;
+  for (int r = 0; r < 64; ++r) {
+    std::vector<Vec3> x;
+    std::vector<double> radii_of_r;
+    for (std::size_t p = 0; p < points.size(); ++p)
+      if (bricks.rank_of(points[p]) == r) {
+        x.push_back(points[p]);
+        radii_of_r.push_back(radius[p]);
+      }
+    const CentresBox box = centres_box(x, radii_of_r);
+    const std::vector<int> near = reach.bricks_near(box.box, box.largest_radius_m, r);
+    asked += near.size();
+    EXPECT_EQ(std::count(near.begin(), near.end(), r), 0);
+    for (std::size_t k = 0; k < x.size(); ++k)
+      for (int other = 0; other < 64; ++other)
+        if (other != r && reach.wanted(other, x[k], radii_of_r[k])) {
+          EXPECT_EQ(std::count(near.begin(), near.end(), other), 1) << "brick " << r << " misses " << other;
+        }
+  }
+  // A 4 x 4 x 4 cut: a brick's neighbours across faces, edges and corners are at most 26.
+  EXPECT_LE(asked, 64u * 26u);
+  EXPECT_GT(asked, 0u);
 }
 
 TEST(RankCostModel, OneRankIsOneProcess) {

@@ -170,8 +170,14 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   std::vector<std::uint32_t> fast;
   double largest_radius = 0.0, largest_fast_half = slow_half;
   for (std::size_t i = 0; i < n; ++i) {
-    const double h = skin.time_step_s > 0.0 ? half_for(norm(particles.velocity_m_per_s[i]) * skin.time_step_s)
-                                            : slow_half;
+    // The distance covered in the steps ahead at the build's velocity and acceleration,
+    // per step (half_for): (|v| + |a| T / 2) dt.
+    const double ahead_s = skin.steps_ahead * skin.time_step_s;
+    const double acceleration = norm(particles.force_N[i]) * particles.inv_mass_per_kg[i];
+    const double h =
+        skin.time_step_s > 0.0
+            ? half_for((norm(particles.velocity_m_per_s[i]) + 0.5 * acceleration * ahead_s) * skin.time_step_s)
+            : slow_half;
     half_skin_m_[i] = h;
     inverse_half_skin2_[i] = 1.0 / (h * h);
     largest_radius = std::max(largest_radius, particles.radius_m[i]);

@@ -48,8 +48,10 @@ inline bool owns_pair(double radius_i, ParticleId id_i, double radius_j, Particl
 
 /// The lists' skin (DESIGN.md section 5), shared out between the two sides of every
 /// pair. Each particle has its own half: skin/2, or, when it moves fast, the distance it
-/// covers in `steps_ahead` steps at its speed at the build (at most max_half_skin_factor
-/// x skin/2); each wall body likewise from its surface's speed. A pair is listed within
+/// covers in `steps_ahead` steps from its velocity and its acceleration at the build
+/// (|v| T + |a| T^2 / 2 with T those steps: a grain a flute pushes is sped up; at most
+/// max_half_skin_factor x skin/2); each wall body likewise from its surface's speed.
+/// Ghosts are sent with their force, so that every rank gives a particle the same half. A pair is listed within
 /// R_i + R_j + h_i + h_j, a wall within R_i + h_i + h_wall, and the lists hold until a
 /// particle has moved more than its own half or a wall more than its own (plus what the
 /// particles have left). A few grains thrown by a drill then no longer rebuild the whole

@@ -32,7 +32,9 @@ struct ParticleField {
   const char* name;
   const char* unit;  // "-": none
   // Travels with a particle that moves to another rank's domain: everything but what the
-  // next force pass computes afresh (force, torque, heat flow).
+  // next force pass computes afresh (torque, heat flow). The force travels, and goes to
+  // the ghosts: the neighbour build reads it (a particle's half of the skin, NeighborSkin),
+  // which must be the same on every rank that holds the particle.
   bool migrates;
   // Copied to the ghost images of a particle near another rank's domain: what a contact
   // with it reads.
@@ -77,7 +79,7 @@ class ParticleStore {
     f(ParticleField{"position", "m", true, true, true}, position_m);
     f(ParticleField{"velocity", "m/s", true, true, true}, velocity_m_per_s);
     f(ParticleField{"angular_velocity", "rad/s", true, true, true}, angular_velocity_rad_per_s);
-    f(ParticleField{"force", "N", false, false, false}, force_N);
+    f(ParticleField{"force", "N", true, true, false}, force_N);
     f(ParticleField{"torque", "N m", false, false, false}, torque_N_m);
     f(ParticleField{"material", "-", true, true, false}, material);
     f(ParticleField{"region", "-", true, false, false}, region);

@@ -96,7 +96,17 @@ int execute(const RunOptions& requested, const ResumePoint* resume) {
   const RunEnding ending = session->run(stop_requested);
   if (writer && ending.status == RunStatus::failed && !ending.outcome.message.empty())
     fmt::print(stderr, "regodem: {}\n", ending.outcome.message);
-  const std::string last_line = session->finish(ending, signal_name(stop_signal()));
+  std::string last_line;
+  try {
+    last_line = session->finish(ending, signal_name(stop_signal()));
+  } catch (const std::exception& error) {
+    // Rank 0 could not write the summary (a full disk): the other ranks may be waiting
+    // for it inside the run, so end them all rather than wait in MPI_Finalize.
+    if (!ranks || ranks->size() == 1) throw;
+    fmt::print(stderr, "regodem: error: {}\n", error.what());
+    std::fflush(stderr);
+    ranks->abort(exit_status::run_failed);
+  }
   if (writer) fmt::print("{}\n", last_line);
   std::fflush(stdout);
   // An error thrown out of the run (writing an output) may be this rank's alone, with the

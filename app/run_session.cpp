@@ -175,7 +175,11 @@ RunSummary make_summary(const RunEnding& ending, const ScenarioSpec& spec, const
                                       w.segment_temperature_K, w.generated_heat_J, w.heat_to_particles_J,
                                       w.radiated_heat_J, w.held_end_heat_in_J});
   }
-  if (sim.keeps_energy_audit()) {
+  // A run over MPI ranks that threw (rank 0 could not write an output) with its particles
+  // split: the run-wide sums over the particles need every rank, which are elsewhere (a
+  // collective here would wait for them for ever), so the summary leaves them out.
+  const bool split = sim.distributed();
+  if (sim.keeps_energy_audit() && !split) {
     const EnergyAudit& audit = sim.energy_audit();
     EnergyAuditSummary a;
     a.wall_work_J = audit.wall_work_J;
@@ -198,13 +202,13 @@ RunSummary make_summary(const RunEnding& ending, const ScenarioSpec& spec, const
                       impact.contact_time_s() / sim.settings().time_step_s,
                       impact.wall_body < 0 ? std::string() : sim.walls.bodies[static_cast<std::size_t>(impact.wall_body)].name,
                       impact.time_s};
-  if (sim.bonds_configured()) {
+  if (sim.bonds_configured() && !split) {
     const BondCounts bonds = sim.bond_counts();  // the simulation's, whether the run ended or threw
     summary.bonds = BondSummary{bonds.formed, bonds.intact, bonds.broken_in_tension, bonds.broken_in_shear};
   }
   const StageResult unfinished =
       ending.status == RunStatus::interrupted ? StageResult::interrupted : StageResult::failed;
-  if (const HeatSettings& h = sim.settings().heat; h.enabled && h.track_thermal_history) {
+  if (const HeatSettings& h = sim.settings().heat; h.enabled && h.track_thermal_history && !split) {
     const ThermalHistorySummary t = thermal_history_summary(sim.particles, h.thermal_history_threshold_K);
     summary.thermal_history = ThermalHistoryFinal{h.thermal_history_threshold_K, t.particles, t.crossed,
                                                   t.crossed_fraction(), t.peak_temperature_max_K,
@@ -213,6 +217,9 @@ RunSummary make_summary(const RunEnding& ending, const ScenarioSpec& spec, const
   summary.measurements = recorder.measurement_finals();
   summary.stages = recorder.stage_summaries(outcome.simulated_time_s, unfinished);
   summary.notices = recorder.notices();
+  if (split)
+    summary.notices.push_back("the run stopped with its particles split over the MPI ranks: summary.json leaves out "
+                              "the sums over the particles (the energy audit, the bond counts, the thermal history)");
   return summary;
 }
 

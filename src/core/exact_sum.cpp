@@ -86,15 +86,21 @@ double ExactSum::value() const {
 }
 
 void ExactSum::append_to(std::vector<double>& out) const {
+  // Sign and magnitude: a negative sum's two's-complement digits would run to the top word.
   std::array<std::int64_t, kWords> digits = words_;
   carry_words(digits);
+  const bool negative = digits[kWords - 1] < 0;
+  if (negative) {
+    for (std::int64_t& d : digits) d = -d;
+    carry_words(digits);
+  }
   std::size_t lowest = 0, end = 0;  // the words that are not zero: [lowest, end)
   for (std::size_t i = 0; i < kWords; ++i)
     if (digits[i] != 0) {
       if (end == 0) lowest = i;
       end = i + 1;
     }
-  out.insert(out.end(), {has_non_finite_ ? 1.0 : 0.0, non_finite_, static_cast<double>(lowest),
+  out.insert(out.end(), {has_non_finite_ ? 1.0 : 0.0, non_finite_, negative ? -1.0 : 1.0, static_cast<double>(lowest),
                          static_cast<double>(end - lowest)});
   // Digits below 2^32, and a last word far smaller than 2^53: exact as doubles.
   for (std::size_t i = lowest; i < end; ++i) out.push_back(static_cast<double>(digits[i]));
@@ -104,17 +110,19 @@ ExactSum ExactSum::read_from(std::span<const double> in, std::size_t& at) {
   const auto malformed = [&](const char* why) {
     return std::invalid_argument("an exact sum's record at " + std::to_string(at) + " is malformed: " + why);
   };
-  if (at + 4 > in.size()) throw malformed("it is cut short");
+  if (at + 5 > in.size()) throw malformed("it is cut short");
   ExactSum sum;
   sum.has_non_finite_ = in[at] != 0.0;
   sum.non_finite_ = in[at + 1];
-  const double lowest = in[at + 2], count = in[at + 3];
+  const double sign = in[at + 2], lowest = in[at + 3], count = in[at + 4];
+  if (sign != 1.0 && sign != -1.0) throw malformed("its sign is neither +1 nor -1");
   if (!(lowest >= 0.0 && count >= 0.0 && lowest + count <= static_cast<double>(kWords)))
     throw malformed("its digits lie outside the accumulator");
   const auto first = static_cast<std::size_t>(lowest), n = static_cast<std::size_t>(count);
-  if (at + 4 + n > in.size()) throw malformed("its digits are cut short");
-  for (std::size_t k = 0; k < n; ++k) sum.words_[first + k] = static_cast<std::int64_t>(in[at + 4 + k]);
-  at += 4 + n;
+  if (at + 5 + n > in.size()) throw malformed("its digits are cut short");
+  for (std::size_t k = 0; k < n; ++k)
+    sum.words_[first + k] = static_cast<std::int64_t>(sign) * static_cast<std::int64_t>(in[at + 5 + k]);
+  at += 5 + n;
   return sum;
 }
 

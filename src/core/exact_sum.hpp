@@ -9,8 +9,9 @@
 // in signed 64-bit words. A term adds its 53-bit significand to at most three digits,
 // less than 2^33 to each: a word could take 2^30 terms before overflowing, and is
 // carried every 2^28.
-// Reading rounds the exact sum to a double by one fixed rule (within one unit in the last
-// place), a function of the exact value alone.
+// Reading turns the exact sum into a double by one fixed rule (its digits added from the
+// most significant: within one unit in the last place, not always the nearest double),
+// a function of the exact value alone.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -32,8 +33,8 @@ class ExactSum {
   /// or NaN term makes it what adding the non-finite terms as doubles gives.
   double value() const;
 
-  /// For a message between ranks: appends a few doubles (each exact: 32-bit digits) that
-  /// read_from() turns back into this sum.
+  /// For a message between ranks: appends a few doubles (each exact: the sign, then the
+  /// magnitude's nonzero 32-bit digits) that read_from() turns back into this sum.
   void append_to(std::vector<double>& out) const;
   /// Reads one sum written by append_to() at `at` and moves `at` past it. Throws
   /// std::invalid_argument on a malformed record.

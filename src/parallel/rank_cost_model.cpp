@@ -32,14 +32,16 @@ CodeTraffic code_traffic(bool bonds, bool removes_lost_particles) {
   t.gathered_bytes_per_particle = bytes_per_particle(ParticleTransfer::whole);
   t.bytes_per_history_entry = sizeof(SavedContact);
   t.bytes_per_bond = bytes_per_bond();
-  // Counted in stage_runner's time_series_row, not measured: each sum over the particles
-  // and each largest value is its own all-gather (a count and the data), or one round:
+  // Counted in stage_runner's time_series_row, not measured, for a run with heat, the
+  // energy audit and bonds (fewer without): each sum over the particles is its own
+  // all-gather (a count and the data: 2), each largest value one round:
   // the energies (kinetic twice over, potential, bonds' stored, and again inside the
   // audit's balance), temperatures, thermal energy and history, bond counts, the fastest
   // impact, the heat step's stability check (with the lumped walls' conductance).
-  t.collectives_per_sample = 34;
+  t.collectives_per_sample = 33;
   t.collectives_per_measurement = 2;
-  // An exact sum travels as 4 doubles and its few nonzero 32-bit digits (about 4).
+  // An exact sum travels as 5 doubles and its nonzero 32-bit digits (a few where the
+  // terms' magnitudes are alike).
   t.merged_bytes_per_sample = 20 * 8 * sizeof(double);
   t.merged_bytes_per_statistic = 12 * sizeof(double);
   return t;

@@ -1,4 +1,5 @@
 #include "sim/run_estimate.hpp"
+#include "sim/stage_runner.hpp"
 
 #include <unistd.h>
 
@@ -289,7 +290,10 @@ PlannedEvents planned_events(const Stage& stage, const StageCost& cost, const St
                                                          : cost.simulated_s / 100.0;
   sample_interval = std::max(sample_interval, cost.step_s);
   events.samples = 1 + static_cast<std::uint64_t>(std::ceil(cost.simulated_s / sample_interval));  // + the end
-  events.gathers = 1 + periodic_events(plan.snapshots, stage, cost);  // the end, the snapshots
+  // The end, the snapshots, every kSamplesPerGather-th sample.
+  events.gathers = 1 + periodic_events(plan.snapshots, stage, cost) +
+                   (events.samples + static_cast<std::uint64_t>(kSamplesPerGather) - 1) /
+                       static_cast<std::uint64_t>(kSamplesPerGather);
   for (const Measurement& m : plan.measurements.items) {
     std::uint64_t takes = periodic_events(m.schedule.periodic, stage, cost);
     for (const double t : m.schedule.at_times_s) takes += t >= start_s && t < start_s + cost.simulated_s ? 1 : 0;

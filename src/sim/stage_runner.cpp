@@ -463,9 +463,15 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         }
         if (sim.distributed()) {
           // Not the samples, measurements and measured ends: their sums are merged over
-          // the ranks.
+          // the ranks. But every kSamplesPerGather-th sample of a stage gathers (a point of
+          // the schedule, the same on any rank count and after a resume), so that a
+          // periodic checkpoint, which waits for a gather, comes within that many samples.
+          const bool sample_due = sim.time_s() + 0.5 * step_s >= next_sample_s;
+          const auto sample_index =
+              static_cast<std::int64_t>(std::llround((next_sample_s - info.start_time_s) / sample_interval));
           bool reads_particles = frozen.has_value() || (decided & stop_now) != 0 ||
-                                 snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m());
+                                 snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m()) ||
+                                 (sample_due && sample_index % kSamplesPerGather == 0);
           for (const Insertion* ins : active)
             reads_particles = reads_particles || (!ins->finished && sim.time_s() + 0.5 * dt >= ins->next_attempt_s());
           if (reads_particles) {
@@ -503,8 +509,8 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
         if (snapshots.due(sim.time_s(), 0.5 * step_s, snapshot_depth_m())) take_snapshot(0.5 * step_s);
         if (!measurements.empty()) measurements.before_step(sim, 0.5 * step_s, observer);
         // Under MPI a periodic checkpoint waits for the next gather the run makes anyway
-        // (a sample at the latest): a gather of its own would rebuild the lists and change
-        // the run's later sums in the last bit.
+        // (every kSamplesPerGather-th sample at the latest): a gather of its own would
+        // rebuild the lists and change the run's later sums in the last bit.
         if (checkpoint_wanted && !sim.distributed()) {
           checkpoint_here(CheckpointReason::periodic);
           checkpoint_wanted = false;

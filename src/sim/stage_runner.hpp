@@ -2,6 +2,7 @@
 // Runs the stages of a plan on a simulation: insertions, end conditions, overrides,
 // time-series samples and progress reports to an observer, and a clean stop on request.
 #include <atomic>
+#include <cstdint>
 
 #include "sim/run_checkpoint.hpp"
 #include "sim/run_observer.hpp"
@@ -9,6 +10,10 @@
 #include "sim/stage_plan.hpp"
 
 namespace regodem {
+
+/// Under MPI a sample merges the ranks' sums and leaves the particles split, but every
+/// this-many-th sample of a stage gathers them (where a periodic checkpoint may be taken).
+inline constexpr std::int64_t kSamplesPerGather = 10;
 
 /// The time-series columns a run reports (fixed part, then per wall body).
 std::vector<SeriesColumn> time_series_columns(const Simulation& sim);

@@ -6,7 +6,8 @@ Usage: run_over_ranks.py REGODEM MPIEXEC WORK_DIRECTORY
 Bounds, stated before the runs:
 - the particles are stepped bit for bit alike on every rank count, and the samples,
   regions and profiles are each rank's own particles summed exactly (core/exact_sum.hpp)
-  and merged over the ranks, with nothing gathered: every particle snapshot (.vtp),
+  and merged over the ranks (gathered only at every 10th sample, insertion attempts,
+  snapshots and stage ends): every particle snapshot (.vtp),
   region table and profile is byte for byte the same, and so is every time-series column
   but the walls' totals;
 - the walls' forces, torques and heat flows (and the heat they brought in, the ledger's

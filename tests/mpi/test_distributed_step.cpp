@@ -258,7 +258,10 @@ TEST(DistributedStep, AFailedBuildLeavesTheRunWholeToGather) {
     Communicator comm;
     const RecursiveBisection bricks(Brick{domain.min_m, top}, sim.particles.position_m, {}, comm.size());
     HaloExchange halo(comm, bricks, sim.ghost_skin_m(), HaloExchange::Start::replicated);
-    sim.distribute(&halo);
+    // As a run starts over ranks: gathered, every rank holding every grain until the
+    // first build cuts them.
+    sim.start_gathered(&halo);
+    sim.distribute_again();
     std::string message;
     try {
       if (!at_first_build) {

@@ -101,6 +101,16 @@ TEST(ExactSum, TravelsAsDoublesBetweenRanks) {
   EXPECT_EQ(a_read.value(), a.value());
   EXPECT_EQ(b_read.value(), -std::numeric_limits<double>::infinity());
   EXPECT_EQ(empty.value(), 0.0);
+  // A negative sum travels as its magnitude's few digits, not a two's complement.
+  ExactSum negative;
+  negative.add(-1.0);
+  negative.add(-0.5);
+  std::vector<double> small;
+  negative.append_to(small);
+  EXPECT_LE(small.size(), 5u + 4u) << "a negative sum sent in " << small.size() << " doubles";
+  std::size_t from_small = 0;
+  EXPECT_EQ(ExactSum::read_from(small, from_small).value(), negative.value());
+  EXPECT_EQ(negative.value(), -1.5);
   ExactSum with_more = a_read;
   with_more.add(-1e16);
   EXPECT_EQ(with_more.value(), 8.25);  // -3e-300 is far below the last place of 8.25

@@ -213,6 +213,56 @@ TEST(ThermalHistory, SummaryCountsParticlesThatPeakedAboveTheThreshold) {
   EXPECT_EQ(region_statistics(p, all, {}, 203.15).crossed_fraction(), 0.5);
 }
 
+// A run over MPI ranks measures each rank's own particles (the ghosts left out) and merges
+// the sums, sent between ranks as doubles: the statistics of all the particles, the same
+// bits as one pass over them.
+TEST(MeasureRegion, PartialSumsLeaveOutTheFlaggedAndMergeIntoTheWhole) {
+  ParticleStore p = store_of({{{0, 0, 0}, 100.1}, {{0, 0, 0}, 150.3}, {{0, 0, 0}, 180.7}, {{0, 0, 0}, 300.9},
+                              {{0, 0, 0}, 250.2}});
+  p.peak_temperature_K = {100.1, 250.0, 180.7, 300.9, 260.0};
+  p.time_above_threshold_s = {0.0, 2.0, 0.0, 6.0, 0.5};
+  MeasureRegion all;
+  all.shape = MeasureShape::box;
+  all.min_m = {-1, -1, -1};
+  all.max_m = {1, 1, 1};
+  const TemperatureStatistics whole = region_statistics(p, all, {}, 203.15);
+  const ThermalHistorySummary whole_history = thermal_history_summary(p, 203.15);
+  // "Rank A" holds particles 0, 2, 4 as its own, "rank B" 1 and 3; each sees the others as ghosts.
+  const std::vector<std::uint8_t> ghosts_of_a{0, 1, 0, 1, 0}, ghosts_of_b{1, 0, 1, 0, 1};
+  const TemperatureAccumulator a = region_sums(p, all, {}, 203.15, ghosts_of_a);
+  const TemperatureAccumulator b = region_sums(p, all, {}, 203.15, ghosts_of_b);
+  EXPECT_EQ(a.result().count, 3u);
+  EXPECT_EQ(b.result().count, 2u);
+  std::vector<double> message;
+  b.append_to(message);
+  a.append_to(message);  // in either order
+  thermal_history_sums(p, 203.15, ghosts_of_b).append_to(message);
+  thermal_history_sums(p, 203.15, ghosts_of_a).append_to(message);
+  std::size_t at = 0;
+  TemperatureAccumulator merged = TemperatureAccumulator::read_from(message, at);
+  merged.merge(TemperatureAccumulator::read_from(message, at));
+  ThermalHistorySums history = ThermalHistorySums::read_from(message, at);
+  history.merge(ThermalHistorySums::read_from(message, at));
+  EXPECT_EQ(at, message.size());
+  const TemperatureStatistics m = merged.result();
+  EXPECT_EQ(m.count, whole.count);
+  EXPECT_EQ(m.crossed, whole.crossed);
+  EXPECT_EQ(m.mean_K, whole.mean_K);
+  EXPECT_EQ(m.min_K, 100.1);
+  EXPECT_EQ(m.max_K, 300.9);
+  const ThermalHistorySummary h = history.result();
+  EXPECT_EQ(h.particles, 5u);
+  EXPECT_EQ(h.crossed, whole_history.crossed);
+  EXPECT_EQ(h.peak_temperature_max_K, 300.9);
+  EXPECT_EQ(h.time_above_threshold_mean_s, whole_history.time_above_threshold_mean_s);
+  EXPECT_EQ(h.time_above_threshold_max_s, 6.0);
+  // An empty partial (a rank without particles in the region) changes nothing.
+  TemperatureAccumulator with_empty = merged;
+  with_empty.merge(TemperatureAccumulator{});
+  EXPECT_EQ(with_empty.result().min_K, 100.1);
+  EXPECT_EQ(with_empty.result().count, 5u);
+}
+
 TEST(ThermalHistory, FieldsFollowTheParticlesThroughPermutation) {
   ParticleStore p = store_of({{{0, 0, 0}, 100.0}, {{1, 0, 0}, 200.0}});
   p.peak_temperature_K = {111.0, 222.0};

@@ -147,9 +147,11 @@ TEST(StageResume, TimeLeftCountsOnlyTheResumedSteps) {
   const double steps_timed = static_cast<double>(late.step) - resumed_at_step;
   ASSERT_GT(steps_left, 0.0);
   ASSERT_GT(steps_timed, 0.0);
-  // Before the fix this ratio was steps_timed / all steps of the stage, under 0.2.
+  // Before the fix this ratio was steps_timed / all steps of the stage, under 0.2. On a
+  // loaded machine the set-up's share of wall_s grows: 0.32 was seen with three busy
+  // processes on two cores (2026-12-06), so the bound sits between that and the bug's.
   const double ratio = late.estimated_remaining_s * steps_timed / (steps_left * late.wall_s);
-  EXPECT_GT(ratio, 0.5);
+  EXPECT_GT(ratio, 0.25);
   EXPECT_LT(ratio, 1.05);
 }
 

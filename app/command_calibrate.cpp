@@ -288,13 +288,7 @@ int calibrate(const CalibrateOptions& options) {
     const auto& response = spec.responses[r];
     std::vector<double> values;
     for (const auto& row : y) values.push_back(row[r]);
-    const auto terms =
-        response.terms.empty() ? doe::full_quadratic_terms(names.size()) : doe::parse_terms(response.terms, names);
-    try {
-      fits.push_back(doe::fit_response_surface(x, values, names, terms, response.name));
-    } catch (const InputError& problem) {
-      throw InputError(fmt::format("{}: cannot fit: {}", response.where, problem.what()));
-    }
+    fits.push_back(fit_design_response(x, values, names, response.terms, response.name, response.where));
     fit_text += fit_report_text(fits.back(), response.unit);
     fit_document["responses"].push_back(fit_json(fits.back(), response.unit));
   }

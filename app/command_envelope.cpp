@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -166,10 +167,11 @@ int envelope(const EnvelopeOptions& options) {
   std::vector<doe::DesignFactor> design_factors;
   for (const auto& f : spec.factors) design_factors.push_back(f.design);
   const doe::CentralCompositeDesign design = doe::make_central_composite_design(design_factors, spec.design);
-  // Bad input before anything runs: the scenario with the first point's values and at
-  // the axial points, which hold each factor's extremes.
+  // Bad input before anything runs: the scenario at every point but the repeated centre.
+  // The extremes are the axial points for alpha >= 1 and the factorial corners for alpha
+  // below 1, and a value can be refused only in combination with another (a corner).
   for (const auto& point : design.runs) {
-    if (&point != &design.runs.front() && point.type != doe::PointType::axial) continue;
+    if (&point != &design.runs.front() && point.type == doe::PointType::centre) continue;
     try {
       PreparedRun::build(read_scenario_file(spec.scenario, point_sets(spec, point.actual)), 1);
     } catch (const InputError& problem) {
@@ -217,7 +219,9 @@ int envelope(const EnvelopeOptions& options) {
   for (const auto& r : spec.responses) columns.push_back({r.name, r.unit});
   write_file_atomically(output / "runs.csv", runs_csv(spec.factors, columns, design, y));
   const std::vector<doe::FactorRange> ranges = design_ranges(design);
-  std::vector<doe::ResponseSurfaceFit> fits;
+  // A response with the same value at every point (a drill that only cools keeps its
+  // starting temperature as its peak) has nothing to fit: it is reported, not fitted.
+  std::vector<std::optional<doe::ResponseSurfaceFit>> fits;
   std::string fit_text;
   ordered_json result;
   result["envelope_file"] = spec.file;
@@ -234,19 +238,27 @@ int envelope(const EnvelopeOptions& options) {
                                  {"high", ranges[f].high}});
   result["design_points"] = design.runs.size();
   result["responses"] = ordered_json::array();
+  const std::size_t mapped = response_index(spec, spec.map.response);
   for (std::size_t r = 0; r < spec.responses.size(); ++r) {
     const auto& response = spec.responses[r];
     std::vector<double> values;
     for (const auto& row : y) values.push_back(row[r]);
-    const auto terms =
-        response.terms.empty() ? doe::full_quadratic_terms(names.size()) : doe::parse_terms(response.terms, names);
-    try {
-      fits.push_back(doe::fit_response_surface(x, values, names, terms, response.name));
-    } catch (const InputError& problem) {
-      throw InputError(fmt::format("{}: cannot fit: {}", response.where, problem.what()));
+    ordered_json entry;
+    if (std::all_of(values.begin(), values.end(), [&](double v) { return v == values.front(); })) {
+      if (r == mapped)
+        throw InputError(fmt::format("{}: the mapped response '{}' is {} at every design point: there is no map to draw",
+                                     response.where, response.name, format_number(values.front(), 8)));
+      fits.push_back(std::nullopt);
+      fit_text += fmt::format("Response {}: {}{} at every design point; not fitted\n\n", response.name,
+                              format_number(values.front(), 8), response.unit.empty() ? "" : " " + response.unit);
+      entry["name"] = response.name;
+      entry["unit"] = response.unit;
+      entry["constant"] = values.front();
+    } else {
+      fits.push_back(fit_design_response(x, values, names, response.terms, response.name, response.where));
+      fit_text += fit_report_text(*fits.back(), response.unit);
+      entry = ordered_json(fit_json(*fits.back(), response.unit));
     }
-    fit_text += fit_report_text(fits.back(), response.unit);
-    ordered_json entry = ordered_json(fit_json(fits.back(), response.unit));
     entry["source"] = response.json_path.empty()
                           ? fmt::format("{} column {} ({})", response.series_file, response.series_column,
                                         response.reduction == doe::SeriesReduction::max    ? "max"
@@ -258,9 +270,8 @@ int envelope(const EnvelopeOptions& options) {
     result["responses"].push_back(entry);
   }
   write_file_atomically(output / "fit.txt", fit_text);
-  const std::size_t mapped = response_index(spec, spec.map.response);
   std::size_t below = 0, grid_points = 0;
-  write_file_atomically(output / "map.csv", map_csv(spec, fits[mapped], design.alpha, ranges, below, grid_points));
+  write_file_atomically(output / "map.csv", map_csv(spec, *fits[mapped], design.alpha, ranges, below, grid_points));
   std::vector<std::string> above;
   for (std::size_t p = 0; p < points.size(); ++p)
     if (!(y[p][mapped] < spec.map.threshold)) above.push_back(points[p].name);
@@ -278,10 +289,18 @@ int envelope(const EnvelopeOptions& options) {
   draw_map(output, spec);
 
   RunBatches::say("");
-  for (std::size_t r = 0; r < fits.size(); ++r)
+  for (std::size_t r = 0; r < fits.size(); ++r) {
+    if (!fits[r]) {
+      RunBatches::say(fmt::format("Not fitted: {} = {}{} at every design point", spec.responses[r].name,
+                                  format_number(y.front()[r], 8),
+                                  spec.responses[r].unit.empty() ? "" : " " + spec.responses[r].unit));
+      continue;
+    }
+    const doe::ResponseSurfaceFit& fit = *fits[r];
     RunBatches::say(fmt::format("Fit: {}   (R² {:.5f}, adjusted {:.5f}, predicted {})",
-                                fits[r].model.equation(fits[r].response_name), fits[r].r_squared,
-                                fits[r].adjusted_r_squared, format_number(fits[r].predicted_r_squared, 5)));
+                                fit.model.equation(fit.response_name), fit.r_squared, fit.adjusted_r_squared,
+                                format_number(fit.predicted_r_squared, 5)));
+  }
   const auto& unit = spec.responses[mapped].unit;
   RunBatches::say(fmt::format(
       "Map: {} below {}{} on {:.1f} % of the {} x {} design region (fitted, inside the design's circle, the other "

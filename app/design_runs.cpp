@@ -278,4 +278,17 @@ int RunBatches::run(const std::vector<PlannedRun>& runs) {
   return exit_status::success;
 }
 
+doe::ResponseSurfaceFit fit_design_response(const std::vector<std::vector<double>>& x,
+                                            const std::vector<double>& values,
+                                            const std::vector<std::string>& factor_names, const std::string& terms,
+                                            const std::string& name, const std::string& where) {
+  const auto model_terms =
+      terms.empty() ? doe::full_quadratic_terms(factor_names.size()) : doe::parse_terms(terms, factor_names);
+  try {
+    return doe::fit_response_surface(x, values, factor_names, model_terms, name);
+  } catch (const InputError& problem) {
+    throw InputError(fmt::format("{}: cannot fit: {}", where, problem.what()));
+  }
+}
+
 }  // namespace regodem::app

@@ -12,6 +12,7 @@
 
 #include "doe/calibration_spec.hpp"
 #include "doe/central_composite_design.hpp"
+#include "doe/response_surface_fit.hpp"
 #include "doe/response_surface_solve.hpp"
 
 namespace regodem::app {
@@ -29,6 +30,14 @@ std::string factor_set_text(const doe::CalibrationFactor& factor, double value);
 
 /// "name [unit]", or the name alone without a unit.
 std::string header(const std::string& name, const std::string& unit);
+
+/// A response's quadratic surface over the design's points x: its `terms` (as `regodem fit
+/// --terms`), or the full quadratic when empty; a failure names the response's place
+/// (`where`) in its file.
+doe::ResponseSurfaceFit fit_design_response(const std::vector<std::vector<double>>& x,
+                                            const std::vector<double>& values,
+                                            const std::vector<std::string>& factor_names, const std::string& terms,
+                                            const std::string& name, const std::string& where);
 
 struct NamedUnit {
   std::string name, unit;

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "drilling_bed.hpp"
 #include "physics_fixtures.hpp"
@@ -34,7 +35,7 @@ struct Drag {
 };
 
 Drag drag(HeatPartitionModel partition, double fixed_share, const SphereMaterial& grain,
-          const SphereMaterial& floor_material) {
+          const SphereMaterial& floor_material, bool every_loss = false) {
   const double overlap = 1e-6, speed = 0.01, mu = 0.4;
   PairProperties between;
   between.restitution = 0.5;
@@ -50,7 +51,10 @@ Drag drag(HeatPartitionModel partition, double fixed_share, const SphereMaterial
   floor.conductivity_W_per_mK = 0.0;  // k_c = 0: no conduction (the partition weighs the material's k)
   SimulationSettings settings = settings_for(kRadius, dt, {}, 0.1);
   settings.heat.enabled = true;
-  settings.heat.friction_heating = true;  // a held grain has no damping: its losses are the sliding alone
+  // A held grain against a wall has no effective mass and so no damping: its losses are the
+  // sliding alone, whether only sliding heats or every loss does.
+  settings.heat.friction_heating = !every_loss;
+  settings.heat.dissipation_heating = every_loss;
   settings.heat.partition = partition;
   settings.heat.friction_partition = fixed_share;
   Simulation sim(std::move(materials), walls, settings, {floor});
@@ -75,6 +79,8 @@ Drag drag(HeatPartitionModel partition, double fixed_share, const SphereMaterial
 
 // The sliding heat within 1e-3 of mu N v t - (mu N)^2/k_t (the step's last slip and the
 // spring's rotation are all that can differ); the wall's share to 1e-9 of the model's.
+// The same with every loss as heat (heat.dissipation_heating), whose path books the
+// contact's dissipated power instead of its sliding power.
 TEST(DissipationHeat, ADraggedGrainHeatsAtMuNvSharedByThePartitionModel) {
   SphereMaterial grain, steel;
   grain.conductivity = 10.0, grain.density = 2500.0, grain.specific_heat = 800.0;
@@ -88,11 +94,13 @@ TEST(DissipationHeat, ADraggedGrainHeatsAtMuNvSharedByThePartitionModel) {
   for (const Case& c : {Case{HeatPartitionModel::equal, 0.9, 0.5}, Case{HeatPartitionModel::fixed, 0.3, 0.3},
                         Case{HeatPartitionModel::conductivity, 0.9, 10.0 / 60.0},
                         Case{HeatPartitionModel::effusivity, 0.9, e_grain / (e_grain + e_steel)}}) {
-    const Drag d = drag(c.model, c.fixed_share, grain, steel);
-    SCOPED_TRACE(to_string(c.model));
-    EXPECT_NEAR(d.generated_heat_J / d.expected_J, 1.0, 1e-3);
-    EXPECT_NEAR(d.wall_heat_J / d.generated_heat_J, 1.0 - c.expected_particle_share, 1e-9);
-    EXPECT_NEAR(d.particle_heat_J / d.generated_heat_J, c.expected_particle_share, 1e-6);
+    for (const bool every_loss : {false, true}) {
+      const Drag d = drag(c.model, c.fixed_share, grain, steel, every_loss);
+      SCOPED_TRACE(std::string(to_string(c.model)) + (every_loss ? ", dissipation_heating" : ", friction_heating"));
+      EXPECT_NEAR(d.generated_heat_J / d.expected_J, 1.0, 1e-3);
+      EXPECT_NEAR(d.wall_heat_J / d.generated_heat_J, 1.0 - c.expected_particle_share, 1e-9);
+      EXPECT_NEAR(d.particle_heat_J / d.generated_heat_J, c.expected_particle_share, 1e-6);
+    }
   }
 }
 

@@ -100,6 +100,16 @@ TEST_F(EnvelopeCli, MapsTheExponentialLawAndItsThreshold) {
       << "within two grid points a row of the law's contour";
   EXPECT_TRUE(contains(f.output, "Map: T_late below 380 K on")) << f.output;
 
+  // A response with one value at every point is reported, not fitted; mapping it is refused.
+  EXPECT_EQ(e.at("responses")[3].at("constant").get<double>(), 1.0);
+  EXPECT_TRUE(contains(read_file(dir_ / "out/fit.txt"), "Response grains: 1 at every design point; not fitted"));
+  std::string constant_map = read_file(dir_ / "plate_envelope.yaml");
+  constant_map.replace(constant_map.find("response: T_late, threshold"), 27, "response: grains, threshold");
+  std::ofstream(dir_ / "constant_map.yaml") << constant_map;
+  const Finished refused = run_regodem({"envelope", "constant_map.yaml", "-o", "out"}, dir_);
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "the mapped response 'grains' is 1 at every design point")) << refused.output;
+
   // Again: nothing runs.
   const Finished again = run_regodem({"envelope", "plate_envelope.yaml", "-o", "out"}, dir_);
   ASSERT_EQ(again.exit_code, 0) << again.output;
@@ -117,9 +127,26 @@ TEST_F(EnvelopeCli, ABadFileIsRefusedWithItsPlace) {
   std::ofstream(dir_ / "bad.yaml") << text;
   const Finished f = run_regodem({"envelope", "bad.yaml", "-o", "out"}, dir_);
   EXPECT_EQ(f.exit_code, 2) << f.output;
-  EXPECT_TRUE(contains(f.output, "bad.yaml:16:")) << f.output;
+  EXPECT_TRUE(contains(f.output, "bad.yaml:17:")) << f.output;
   EXPECT_TRUE(contains(f.output, "'T_hot' is not one of the responses")) << f.output;
   EXPECT_TRUE(contains(f.output, "must hold `{}` once")) << f.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out/runs")) << "nothing ran";
+}
+
+// With alpha below 1 the factorial corners hold the extremes: a step refused only at
+// the +1 corners (rayleigh_fraction 0.55 over the 0.5 that is the most allowed; 0.05 at
+// -1 and 0.175-0.425 at the axial points are fine) stops the envelope before any run.
+TEST_F(EnvelopeCli, AValueRefusedOnlyAtACornerStopsItBeforeAnyRun) {
+  std::string text = read_file(dir_ / "plate_envelope.yaml");
+  const std::string k_wall = "{name: k_wall, set: walls.plate.thermal.conductivity, centre: 20, step: 2, unit: W/(m K)}";
+  text.replace(text.find(k_wall), k_wall.size(), "{name: step, set: rayleigh_fraction, centre: 0.3, step: 0.25}");
+  text.replace(text.find("x: k_wall"), 9, "x: step");
+  text.replace(text.find("alpha: rotatable"), 16, "alpha: 0.5");
+  std::ofstream(dir_ / "corner.yaml") << text;
+  const Finished f = run_regodem({"envelope", "corner.yaml", "-o", "out"}, dir_);
+  EXPECT_EQ(f.exit_code, 2) << f.output;
+  EXPECT_TRUE(contains(f.output, "does not read at the design point")) << f.output;
+  EXPECT_TRUE(contains(f.output, "0.55")) << f.output;
   EXPECT_FALSE(fs::exists(dir_ / "out/runs")) << "nothing ran";
 }
 

@@ -15,9 +15,9 @@ namespace {
 
 std::vector<double> run(std::vector<double> temperature_K, const std::vector<double>& capacity,
                         const std::vector<double>& area, const std::vector<double>& contact_W, const WallRod& rod,
-                        double dt_s, int steps, WallBoundaryHeat* total = nullptr) {
+                        double dt_s, int steps, WallBoundaryHeat* total = nullptr, double time_scale = 1.0) {
   for (int k = 0; k < steps; ++k) {
-    const WallBoundaryHeat h = step_lumped_wall(temperature_K, capacity, area, contact_W, rod, dt_s, 1.0);
+    const WallBoundaryHeat h = step_lumped_wall(temperature_K, capacity, area, contact_W, rod, dt_s, time_scale);
     if (total) {
       total->radiated_J += h.radiated_J;
       total->held_end_in_J += h.held_end_in_J;
@@ -74,6 +74,57 @@ TEST(LumpedWallStep, RadiationToColdSpaceCoolsAsTheQuarticLaw) {
   const auto t = run({t0}, {c}, {area}, {0.0}, rod, t_end / steps, steps, &heat);
   EXPECT_NEAR(t[0], t0 / 2, 1e-3 * t0);
   EXPECT_NEAR(heat.radiated_J, c * (t0 - t[0]), 1e-12 * c * t0);  // what it lost went out as radiation
+}
+
+// Radiation to surroundings at T_a: C dT/dt = -eps sigma A (T^4 - T_a^4), whose solution
+// is F(T) = F(T0) - eps sigma A t / C with F(T) = [ln((T - T_a)/(T + T_a)) - 2 atan(T/T_a)]
+// / (4 T_a^3). From 400 K to 250 K with T_a = 200 K: 1e-3 of T0, as above. A node at the
+// surroundings' temperature neither cools nor warms (a wrong sign of T_a^4 would cool it
+// by tens of kelvin here).
+TEST(LumpedWallStep, RadiationToWarmSurroundingsFollowsTheExactQuarticLaw) {
+  WallRod rod;
+  rod.emissivity = 0.8;
+  rod.surroundings_K = 200.0;
+  const double c = 1.0, area = 0.01, t0 = 400.0, t1 = 250.0, ta = rod.surroundings_K;
+  const double b = rod.emissivity * kStefanBoltzmann_W_per_m2K4 * area / c;
+  const auto f = [ta](double t) { return (std::log((t - ta) / (t + ta)) - 2.0 * std::atan(t / ta)) / (4 * ta * ta * ta); };
+  const double t_end = (f(t0) - f(t1)) / b;
+  const int steps = 20000;
+  WallBoundaryHeat heat;
+  const auto t = run({t0}, {c}, {area}, {0.0}, rod, t_end / steps, steps, &heat);
+  EXPECT_NEAR(t[0], t1, 1e-3 * t0);
+  EXPECT_NEAR(heat.radiated_J, c * (t0 - t[0]), 1e-12 * c * t0);
+  WallBoundaryHeat none;
+  const auto still = run({ta}, {c}, {area}, {0.0}, rod, t_end / steps, steps, &none);
+  EXPECT_NEAR(still[0], ta, 1e-9 * ta);
+  EXPECT_NEAR(none.radiated_J, 0.0, 1e-12 * c * t0);
+}
+
+// Every exchange of the wall (the links, the held end, radiation) runs S times faster at
+// a time-scale factor S, as the contact conductances do; the contacts' heat is passed in
+// already scaled and is not scaled again. So S = 20 over t / 20 ends where S = 1 ends
+// over t, to round-off: each step has the same increments (G S)(dt / S). A third node
+// heated by its contacts gains Q dt / C a step whatever S is.
+TEST(LumpedWallStep, EveryExchangeRunsSTimesFasterAtATimeScaleFactor) {
+  WallRod rod;
+  rod.link_conductance_W_per_K = 0.5;
+  rod.held_end_K = 150.0;
+  rod.held_end_conductance_W_per_K = 2.0;
+  rod.emissivity = 0.5;
+  rod.surroundings_K = 40.0;
+  const std::vector<double> capacity{1.0, 2.0, 3.0}, area{0.01, 0.01, 0.01}, no_contacts{0.0, 0.0, 0.0};
+  const std::vector<double> start{300.0, 200.0, 100.0};
+  const double dt = 1e-4;
+  WallBoundaryHeat real, compressed;
+  const auto t1 = run(start, capacity, area, no_contacts, rod, dt, 2000, &real, 1.0);
+  const auto t20 = run(start, capacity, area, no_contacts, rod, dt / 20.0, 2000, &compressed, 20.0);
+  for (int s = 0; s < 3; ++s) EXPECT_NEAR(t20[s], t1[s], 1e-12 * 300.0) << "node " << s;
+  EXPECT_NEAR(compressed.radiated_J, real.radiated_J, 1e-12 * std::abs(real.radiated_J));
+  EXPECT_NEAR(compressed.held_end_in_J, real.held_end_in_J, 1e-12 * std::abs(real.held_end_in_J));
+  EXPECT_GT(std::abs(t1[0] - start[0]), 1.0);  // the exchanges did act
+  // The contacts' heat: one isolated node, S = 20, 100 steps of Q dt / C.
+  const auto heated = run({100.0}, {2.0}, {0.0}, {0.5}, WallRod{}, 1e-3, 100, nullptr, 20.0);
+  EXPECT_NEAR(heated[0], 100.0 + 100 * 0.5 * 1e-3 / 2.0, 1e-12 * 100.0);
 }
 
 // A rod heated at its tip (node 0) and held at its far end: the steady state is

@@ -253,8 +253,10 @@ WallMotion wall_motion(const WallSpec& w) {
 }
 
 /// The wall's own conductivity: its thermal block's, else that of the material it
-/// names (a table at the wall's initial temperature), else none (the particles' own).
+/// names (a table at the wall's initial temperature), else none (the particles' own);
+/// none too when the block says `conductivity: particles`.
 std::optional<double> wall_conductivity(const ScenarioSpec& spec, const WallSpec& w, double initial_K) {
+  if (w.thermal.conductivity_of_particles) return std::nullopt;
   if (w.thermal.conductivity_W_per_mK) return w.thermal.conductivity_W_per_mK;
   if (w.material.empty()) return std::nullopt;
   for (const MaterialSpec& m : spec.materials) {

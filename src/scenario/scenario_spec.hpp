@@ -115,7 +115,10 @@ struct WallThermalSpec {
   // lumped: the initial temperature (one row).
   std::vector<double> time_s;
   std::vector<double> temperature_K;
-  std::optional<double> conductivity_W_per_mK;  // none: the particles' own
+  std::optional<double> conductivity_W_per_mK;  // none: the material's, else the particles' own
+  // `conductivity: particles`: the contacts conduct with the particles' own k (Eq. 1's k_s)
+  // even when the wall's material gives a k (which the heat partition and the rod then use).
+  bool conductivity_of_particles = false;
   bool harmonic_mean = false;                   // k_c = harmonic mean of wall and particle
   double specific_heat_J_per_kgK = 0.0;         // lumped
   double mass_kg = 0.0;                         // lumped: mass, or

@@ -97,6 +97,46 @@ TEST(ScenarioDrillBody, WhatARodCannotBeIsRefused) {
                  "exchange heat too fast for the time step");
 }
 
+// A drill whose steel gives its k (16 W/(m K), for the rod and a partition by conductivity
+// or effusivity) conducts at its contacts with that k, unless its thermal block says
+// `conductivity: particles`: then with the grains' own (Eq. 1's k_s), as the paper's files.
+TEST(ScenarioDrillBody, ADrillMayConductWithTheParticlesOwnKWhileItsSteelGivesOne) {
+  const fs::path csv = probe_csv();
+  const std::string steel = "steel: {density: 7800 kg/m^3,";
+  const auto drill_with = [&](const std::string& extra) {
+    return tiny_drill_text(
+        [&](std::string text) {
+          text = replace_all(text, steel, "steel: {conductivity: 16 W/(m K), density: 7800 kg/m^3,");
+          return replace_all(text, kFixedDrill,
+                             "thermal: {mode: lumped, temperature: -100 degC, specific_heat: 500 J/(kg K), mass: 2 g, "
+                             "segments: 5, rod: {cross_section: 2 mm^2}" + extra + "}");
+        },
+        csv);
+  };
+  for (const bool own : {false, true}) {
+    SCOPED_TRACE(own ? "conductivity: particles" : "the material's k");
+    const PreparedRun run =
+        PreparedRun::build(read_scenario_string(drill_with(own ? ", conductivity: particles" : ""), "drill.yaml"), 1);
+    const Simulation& sim = run.simulation();
+    const ThermalWall& drill = sim.wall_thermal[sim.walls.meshes.at(0).body];
+    if (own) {
+      EXPECT_FALSE(drill.conductivity_W_per_mK.has_value());
+    } else {
+      ASSERT_TRUE(drill.conductivity_W_per_mK.has_value());
+      EXPECT_DOUBLE_EQ(*drill.conductivity_W_per_mK, 16.0);
+    }
+    const double link = 16.0 * 2e-6 / 5e-3;  // the rod takes the steel's k either way
+    EXPECT_NEAR(drill.rod.link_conductance_W_per_K, link, 1e-12 * link);
+  }
+  try {
+    (void)PreparedRun::build(read_scenario_string(drill_with(", conductivity: grains"), "drill.yaml"), 1);
+    ADD_FAILURE() << "accepted conductivity: grains";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("`particles`"), std::string::npos) << e.what();
+  }
+  fs::remove(csv);
+}
+
 TEST(ScenarioDrillBody, APrimitiveWallHasNoRodButMayRadiate) {
   const fs::path csv = probe_csv();
   const std::string barrel = "ends: {bottom: capped}}";

@@ -222,6 +222,7 @@ int envelope(const EnvelopeOptions& options) {
   // A response with the same value at every point (a drill that only cools keeps its
   // starting temperature as its peak) has nothing to fit: it is reported, not fitted.
   std::vector<std::optional<doe::ResponseSurfaceFit>> fits;
+  std::vector<std::string> fit_lines;  // one line per response for the closing report
   std::string fit_text;
   ordered_json result;
   result["envelope_file"] = spec.file;
@@ -249,14 +250,19 @@ int envelope(const EnvelopeOptions& options) {
         throw InputError(fmt::format("{}: the mapped response '{}' is {} at every design point: there is no map to draw",
                                      response.where, response.name, format_number(values.front(), 8)));
       fits.push_back(std::nullopt);
-      fit_text += fmt::format("Response {}: {}{} at every design point; not fitted\n\n", response.name,
-                              format_number(values.front(), 8), response.unit.empty() ? "" : " " + response.unit);
+      fit_lines.push_back(fmt::format("Not fitted: {} = {}{} at every design point", response.name,
+                                      format_number(values.front(), 8), response.unit.empty() ? "" : " " + response.unit));
+      fit_text += fit_lines.back() + "\n\n";
       entry["name"] = response.name;
       entry["unit"] = response.unit;
       entry["constant"] = values.front();
     } else {
       fits.push_back(fit_design_response(x, values, names, response.terms, response.name, response.where));
-      fit_text += fit_report_text(*fits.back(), response.unit);
+      const doe::ResponseSurfaceFit& fit = *fits.back();
+      fit_lines.push_back(fmt::format("Fit: {}   (R² {:.5f}, adjusted {:.5f}, predicted {})",
+                                      fit.model.equation(fit.response_name), fit.r_squared, fit.adjusted_r_squared,
+                                      format_number(fit.predicted_r_squared, 5)));
+      fit_text += fit_report_text(fit, response.unit);
       entry = ordered_json(fit_json(*fits.back(), response.unit));
     }
     entry["source"] = response.json_path.empty()
@@ -289,18 +295,7 @@ int envelope(const EnvelopeOptions& options) {
   draw_map(output, spec);
 
   RunBatches::say("");
-  for (std::size_t r = 0; r < fits.size(); ++r) {
-    if (!fits[r]) {
-      RunBatches::say(fmt::format("Not fitted: {} = {}{} at every design point", spec.responses[r].name,
-                                  format_number(y.front()[r], 8),
-                                  spec.responses[r].unit.empty() ? "" : " " + spec.responses[r].unit));
-      continue;
-    }
-    const doe::ResponseSurfaceFit& fit = *fits[r];
-    RunBatches::say(fmt::format("Fit: {}   (R² {:.5f}, adjusted {:.5f}, predicted {})",
-                                fit.model.equation(fit.response_name), fit.r_squared, fit.adjusted_r_squared,
-                                format_number(fit.predicted_r_squared, 5)));
-  }
+  for (const std::string& line : fit_lines) RunBatches::say(line);
   const auto& unit = spec.responses[mapped].unit;
   RunBatches::say(fmt::format(
       "Map: {} below {}{} on {:.1f} % of the {} x {} design region (fitted, inside the design's circle, the other "

@@ -1,6 +1,5 @@
 // The `walls` list: analytic planes, disks, cylinder shells and segmented sieves, and
 // triangle meshes (read_mesh_wall.cpp), with prescribed motion and a thermal mode.
-#include <cctype>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -417,13 +416,8 @@ void read_wall_thermal(const YamlValue& value, const ScenarioReferences& referen
     }
   }
   const auto conductivity = section->get("conductivity");
-  const std::string word = conductivity && conductivity->node().IsScalar() ? conductivity->node().Scalar() : "";
-  if (word == "particles") {
+  if (conductivity && conductivity->node().IsScalar() && conductivity->node().Scalar() == "particles") {
     thermal.conductivity_of_particles = true;
-  } else if (!word.empty() && std::isalpha(static_cast<unsigned char>(word.front()))) {
-    conductivity->error(fmt::format("'{}': give a thermal conductivity (e.g. 16 W/(m K)) or `particles` (the "
-                                    "particles' own, Eq. 1's k_s)",
-                                    word));
   } else {
     thermal.conductivity_W_per_mK =
         read_checked_quantity(*section, "conductivity", Dimension::thermal_conductivity, Presence::optional,

@@ -191,6 +191,11 @@ class NeighborList {
   std::vector<std::uint32_t> saved_owner_of_;
   std::vector<SavedContact> saved_;
   // Reused scratch space.
+  struct SearchPoint {  // a particle's position and radius side by side, for the pair search
+    Vec3 position_m;
+    double radius_m;
+  };
+  std::vector<SearchPoint> search_point_;
   std::vector<std::uint32_t> cell_start_;
   std::vector<std::uint32_t> cell_of_particle_;
   std::vector<std::uint32_t> sort_order_, sort_fill_;

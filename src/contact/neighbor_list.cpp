@@ -257,10 +257,11 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     for (std::size_t i = 0; i < n; ++i) fast_pair_offset_[i + 1] += fast_pair_offset_[i];
   }
 
-  thread_partners_.resize(threads);
-  thread_walls_.resize(threads);
-  thread_mesh_walls_.resize(threads);
-  thread_mesh_triangles_.resize(threads);
+  // The owners in chunks, handed out to the threads as they come free (the work per
+  // owner varies: a coarse grain searches many more cells, a grain by the drill its
+  // mesh); each chunk's lists go to its own buffers, joined in chunk order below.
+  const std::size_t chunks = (n + kBuildChunk - 1) / kBuildChunk;
+  if (chunk_lists_.size() < chunks) chunk_lists_.resize(chunks);
   offset.assign(n + 1, 0);
   wall_offset.assign(n + 1, 0);
   mesh_offset.assign(n + 1, 0);
@@ -268,90 +269,93 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
 
 #pragma omp parallel num_threads(threads)
   {
-    const int t = omp_get_thread_num();
-    const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
-    std::vector<std::uint32_t>& partners = thread_partners_[t];
-    std::vector<std::uint32_t>& wall_hits = thread_walls_[t];
-    std::vector<std::uint32_t>& mesh_hits = thread_mesh_walls_[t];
-    std::vector<std::uint32_t>& mesh_triangles = thread_mesh_triangles_[t];
     std::vector<std::uint32_t> thin_walls;  // the owner's disk and cylinder walls
     std::vector<std::uint32_t> candidates;
     std::vector<std::uint32_t> near(256);  // the owner's candidates within reach
-    partners.clear();
-    wall_hits.clear();
-    mesh_hits.clear();
-    mesh_triangles.clear();
-    for (std::size_t i = begin; i < end; ++i) {
-      const double ri = radius[i], hi = half[i];
-      const bool ghost_i = ghost && ghost[i];
-      // Walls first: a pair that touches through a thin wall (a sieve) is no pair.
-      const std::size_t first_wall = wall_hits.size();
-      if (ghost_i) {
-        thin_walls_of(i, thin_walls);  // they still block its pairs; its wall contacts are its own rank's
-      } else {
-        thin_walls.clear();
-        for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
-          const WallPrimitive& wall = walls.primitives[w];
-          const WallProximity p = closest_wall_point(wall, x[i]);
-          if (p.candidate && p.distance_m < ri + hi + body_half_skin_m_[wall.body]) {
-            wall_hits.push_back(w);
-            if (wall.shape != PrimitiveShape::plane) thin_walls.push_back(w);
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+      const std::size_t begin = chunk * kBuildChunk, end = std::min(n, begin + kBuildChunk);
+      ChunkLists& lists = chunk_lists_[chunk];
+      std::vector<std::uint32_t>& partners = lists.partners;
+      std::vector<std::uint32_t>& wall_hits = lists.walls;
+      std::vector<std::uint32_t>& mesh_hits = lists.mesh_walls;
+      std::vector<std::uint32_t>& mesh_triangles = lists.mesh_triangles;
+      partners.clear();
+      wall_hits.clear();
+      mesh_hits.clear();
+      mesh_triangles.clear();
+      for (std::size_t i = begin; i < end; ++i) {
+        const double ri = radius[i], hi = half[i];
+        const bool ghost_i = ghost && ghost[i];
+        // Walls first: a pair that touches through a thin wall (a sieve) is no pair.
+        const std::size_t first_wall = wall_hits.size();
+        if (ghost_i) {
+          thin_walls_of(i, thin_walls);  // they still block its pairs; its wall contacts are its own rank's
+        } else {
+          thin_walls.clear();
+          for (std::uint32_t w = 0; w < walls.primitives.size(); ++w) {
+            const WallPrimitive& wall = walls.primitives[w];
+            const WallProximity p = closest_wall_point(wall, x[i]);
+            if (p.candidate && p.distance_m < ri + hi + body_half_skin_m_[wall.body]) {
+              wall_hits.push_back(w);
+              if (wall.shape != PrimitiveShape::plane) thin_walls.push_back(w);
+            }
           }
         }
-      }
-      wall_offset[i + 1] = static_cast<std::uint32_t>(wall_hits.size() - first_wall);
-      // Mesh triangles within reach, found through each mesh's grid in its reference frame.
-      const std::size_t first_mesh_entry = mesh_triangles.size();
-      for (std::uint32_t m = 0; !ghost_i && m < walls.meshes.size(); ++m) {
-        const MeshWall& mesh = walls.meshes[m];
-        const Vec3 local = walls.bodies[mesh.body].pose.to_reference(x[i]);
-        const double reach = ri + hi + body_half_skin_m_[mesh.body];
-        if (norm2(local - mesh.bounding_centre_m) > (mesh.bounding_radius_m + reach) * (mesh.bounding_radius_m + reach))
-          continue;
-        mesh.grid.candidates(local, reach, candidates);
-        for (const std::uint32_t tri : candidates) {
-          const TriangleClosestPoint q =
-              closest_point_on_triangle(local, mesh.mesh.corner(tri, 0), mesh.mesh.corner(tri, 1), mesh.mesh.corner(tri, 2));
-          if (norm2(q.point_m - local) < reach * reach) {
-            mesh_hits.push_back(m);
-            mesh_triangles.push_back(tri);
+        wall_offset[i + 1] = static_cast<std::uint32_t>(wall_hits.size() - first_wall);
+        // Mesh triangles within reach, found through each mesh's grid in its reference frame.
+        const std::size_t first_mesh_entry = mesh_triangles.size();
+        for (std::uint32_t m = 0; !ghost_i && m < walls.meshes.size(); ++m) {
+          const MeshWall& mesh = walls.meshes[m];
+          const Vec3 local = walls.bodies[mesh.body].pose.to_reference(x[i]);
+          const double reach = ri + hi + body_half_skin_m_[mesh.body];
+          if (norm2(local - mesh.bounding_centre_m) > (mesh.bounding_radius_m + reach) * (mesh.bounding_radius_m + reach))
+            continue;
+          mesh.grid.candidates(local, reach, candidates);
+          for (const std::uint32_t tri : candidates) {
+            const TriangleClosestPoint q =
+                closest_point_on_triangle(local, mesh.mesh.corner(tri, 0), mesh.mesh.corner(tri, 1), mesh.mesh.corner(tri, 2));
+            if (norm2(q.point_m - local) < reach * reach) {
+              mesh_hits.push_back(m);
+              mesh_triangles.push_back(tri);
+            }
           }
         }
-      }
-      mesh_offset[i + 1] = static_cast<std::uint32_t>(mesh_triangles.size() - first_mesh_entry);
+        mesh_offset[i + 1] = static_cast<std::uint32_t>(mesh_triangles.size() - first_mesh_entry);
 
-      // Slow partners no larger than the owner, within R_i + R_j + h_i + skin/2.
-      const std::size_t first = partners.size();
-      // The distance first, from one record per candidate, and without a branch: about
-      // two candidates in three are out of reach, in no order a branch predictor could
-      // learn. Those within reach are collected, then sifted.
-      const Vec3 xi = x[i];
-      std::uint32_t within = 0;
-      for_each_run_near(grid, xi, 2.0 * ri + hi + slow_half, [&](std::uint32_t begin, std::uint32_t end) {
-        if (near.size() < within + (end - begin)) near.resize(2 * (within + (end - begin)));
-        std::uint32_t* __restrict out = near.data();
-        for (std::uint32_t j = begin; j < end; ++j) {
-          const SearchPoint& p = point[j];
-          const double cutoff = ri + p.radius_m + hi + slow_half;
-          out[within] = j;
-          within += norm2(p.position_m - xi) < cutoff * cutoff ? 1u : 0u;
+        // Slow partners no larger than the owner, within R_i + R_j + h_i + skin/2.
+        const std::size_t first = partners.size();
+        // The distance first, from one record per candidate, and without a branch: about
+        // two candidates in three are out of reach, in no order a branch predictor could
+        // learn. Those within reach are collected, then sifted.
+        const Vec3 xi = x[i];
+        std::uint32_t within = 0;
+        for_each_run_near(grid, xi, 2.0 * ri + hi + slow_half, [&](std::uint32_t begin, std::uint32_t end) {
+          if (near.size() < within + (end - begin)) near.resize(2 * (within + (end - begin)));
+          std::uint32_t* __restrict out = near.data();
+          for (std::uint32_t j = begin; j < end; ++j) {
+            const SearchPoint& p = point[j];
+            const double cutoff = ri + p.radius_m + hi + slow_half;
+            out[within] = j;
+            within += norm2(p.position_m - xi) < cutoff * cutoff ? 1u : 0u;
+          }
+        });
+        for (std::uint32_t c = 0; c < within; ++c) {
+          const std::uint32_t j = near[c];
+          if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j]) || both_ghosts(i, j)) continue;
+          if (!blocked_by(thin_walls, i, j)) partners.push_back(j);
         }
-      });
-      for (std::uint32_t c = 0; c < within; ++c) {
-        const std::uint32_t j = near[c];
-        if (j == i || half[j] > slow_half || !owns_pair(ri, id[i], radius[j], id[j]) || both_ghosts(i, j)) continue;
-        if (!blocked_by(thin_walls, i, j)) partners.push_back(j);
+        // And the fast ones found above.
+        for (std::uint32_t e = fast_pair_offset_[i]; e < fast_pair_offset_[i + 1]; ++e)
+          partners.push_back(fast_pairs_[e].second);
+        // Deterministic, cache-friendly order within the owner's list.
+        std::sort(partners.begin() + static_cast<std::ptrdiff_t>(first), partners.end());
+        for (std::size_t e = first; e < partners.size(); ++e) {
+          const double touch = ri + radius[partners[e]];
+          if (norm2(x[partners[e]] - x[i]) < touch * touch) ++touching_[i];
+        }
+        offset[i + 1] = static_cast<std::uint32_t>(partners.size() - first);
       }
-      // And the fast ones found above.
-      for (std::uint32_t e = fast_pair_offset_[i]; e < fast_pair_offset_[i + 1]; ++e)
-        partners.push_back(fast_pairs_[e].second);
-      // Deterministic, cache-friendly order within the owner's list.
-      std::sort(partners.begin() + static_cast<std::ptrdiff_t>(first), partners.end());
-      for (std::size_t e = first; e < partners.size(); ++e) {
-        const double touch = ri + radius[partners[e]];
-        if (norm2(x[partners[e]] - x[i]) < touch * touch) ++touching_[i];
-      }
-      offset[i + 1] = static_cast<std::uint32_t>(partners.size() - first);
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
@@ -363,13 +367,13 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   wall_primitive.resize(wall_offset[n]);
   mesh_wall.resize(mesh_offset[n]);
   mesh_triangle.resize(mesh_offset[n]);
-  for (int t = 0; t < threads; ++t) {
-    const std::size_t begin = n * t / threads;
-    std::copy(thread_partners_[t].begin(), thread_partners_[t].end(), partner.begin() + offset[begin]);
-    std::copy(thread_walls_[t].begin(), thread_walls_[t].end(), wall_primitive.begin() + wall_offset[begin]);
-    std::copy(thread_mesh_walls_[t].begin(), thread_mesh_walls_[t].end(), mesh_wall.begin() + mesh_offset[begin]);
-    std::copy(thread_mesh_triangles_[t].begin(), thread_mesh_triangles_[t].end(),
-              mesh_triangle.begin() + mesh_offset[begin]);
+  for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+    const std::size_t begin = chunk * kBuildChunk;
+    const ChunkLists& lists = chunk_lists_[chunk];
+    std::copy(lists.partners.begin(), lists.partners.end(), partner.begin() + offset[begin]);
+    std::copy(lists.walls.begin(), lists.walls.end(), wall_primitive.begin() + wall_offset[begin]);
+    std::copy(lists.mesh_walls.begin(), lists.mesh_walls.end(), mesh_wall.begin() + mesh_offset[begin]);
+    std::copy(lists.mesh_triangles.begin(), lists.mesh_triangles.end(), mesh_triangle.begin() + mesh_offset[begin]);
   }
   restore_history(particles, threads);
 

@@ -200,9 +200,11 @@ class NeighborList {
   std::vector<std::uint32_t> cell_of_particle_;
   std::vector<std::uint32_t> sort_order_, sort_fill_;
   std::vector<std::uint32_t> touching_;  // per owner: partners in contact at the build
-  std::vector<std::vector<std::uint32_t>> thread_partners_;
-  std::vector<std::vector<std::uint32_t>> thread_walls_;
-  std::vector<std::vector<std::uint32_t>> thread_mesh_walls_, thread_mesh_triangles_;
+  static constexpr std::size_t kBuildChunk = 256;  // owners per chunk of a build
+  struct ChunkLists {  // a chunk's entries while the build runs
+    std::vector<std::uint32_t> partners, walls, mesh_walls, mesh_triangles;
+  };
+  std::vector<ChunkLists> chunk_lists_;
 };
 
 /// Calls visit(mesh_wall, begin, end) for each run of particle i's mesh entries that

@@ -93,7 +93,7 @@ void BM_UniaxialCompression(benchmark::State& state) {
     s.domain.max_m.z = top + 20e-3;
     s.domain.min_m.x = s.domain.min_m.y = -6.0 * kSampleRadius;
     s.domain.max_m.x = s.domain.max_m.y = 6.0 * kSampleRadius;
-    Simulation sim(barrel.materials, walls, s);
+    Simulation sim(barrel.model().materials, walls, s);
     for (std::size_t i = 0; i < barrel.particles.size(); ++i) {
       NewParticle p;
       p.position_m = barrel.particles.position_m[i];

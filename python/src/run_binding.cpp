@@ -366,7 +366,7 @@ class PythonRun {
   std::vector<std::string> material_names() const {
     readable();
     std::vector<std::string> names;
-    const MaterialTable& materials = simulation().materials;
+    const MaterialTable& materials = simulation().model().materials;
     for (std::size_t m = 0; m < materials.size(); ++m) names.push_back(materials[static_cast<MaterialIndex>(m)].name);
     return names;
   }

@@ -555,12 +555,12 @@ void configure_bonds(const ScenarioSpec& spec, Simulation& sim, std::vector<std:
                                    "which materials (e.g. `bonds: [{materials: [regolith, regolith]}]`)");
     return;
   }
-  const std::size_t n = sim.materials.size();
+  const std::size_t n = sim.model().materials.size();
   std::vector<BondParameters> kinds;
   std::vector<int> kind_of_pair(n * n, -1);
   for (const BondSpec& b : spec.bonds) {
-    const MaterialIndex a = material_index(sim.materials, b.material_a, b.where);
-    const MaterialIndex c = material_index(sim.materials, b.material_b, b.where);
+    const MaterialIndex a = material_index(sim.model().materials, b.material_a, b.where);
+    const MaterialIndex c = material_index(sim.model().materials, b.material_b, b.where);
     BondParameters p;
     p.normal_stiffness_Pa_per_m = b.normal_stiffness_Pa_per_m;
     p.shear_stiffness_Pa_per_m = b.shear_stiffness_Pa_per_m;
@@ -593,9 +593,9 @@ BondFormation bond_formation(const ScenarioSpec& spec, const BondFormationSpec& 
   BondFormation out;
   out.gap_fraction = in.gap_fraction;
   if (!in.materials.empty()) {
-    out.materials.assign(sim.materials.size(), 0);
+    out.materials.assign(sim.model().materials.size(), 0);
     for (const std::string& name : in.materials) {
-      const MaterialIndex m = material_index(sim.materials, name, in.where);
+      const MaterialIndex m = material_index(sim.model().materials, name, in.where);
       const bool bonded = std::any_of(spec.bonds.begin(), spec.bonds.end(), [&](const BondSpec& b) {
         return b.material_a == name || b.material_b == name;
       });
@@ -991,8 +991,8 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     for (const OverrideSpec& o : st.overrides) {
       PairOverride po;
       if (!o.material_a.empty()) {
-        po.material_a = material_index(impl.simulation->materials, o.material_a, o.where);
-        po.material_b = material_index(impl.simulation->materials, o.material_b.empty() ? o.material_a : o.material_b, o.where);
+        po.material_a = material_index(impl.simulation->model().materials, o.material_a, o.where);
+        po.material_b = material_index(impl.simulation->model().materials, o.material_b.empty() ? o.material_a : o.material_b, o.where);
       }
       po.restitution = o.restitution;
       po.sliding_friction = o.sliding_friction;

@@ -94,23 +94,17 @@ void carry_mesh_springs(const TriangleMesh& mesh, const std::uint32_t* triangles
 
 Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const SimulationSettings& settings,
                        std::vector<ThermalWall> wall_thermal_in)
-    : materials(std::move(materials_in)),
-      walls(std::move(walls_in)),
+    : walls(std::move(walls_in)),
       wall_thermal(std::move(wall_thermal_in)),
-      settings_(settings),
-      contact_parameters_(materials),
-      conduction_parameters_(materials, settings.heat.time_scale_factor) {
+      model_(std::move(materials_in), settings) {
   const std::size_t n_bodies = walls.bodies.size();
   if (wall_thermal.empty()) wall_thermal.resize(n_bodies);
   if (wall_thermal.size() != n_bodies)
     throw InputError(fmt::format("{} wall thermal descriptions for {} walls", wall_thermal.size(), n_bodies));
-  if (!(settings_.neighbor_skin_m > 0.0))
-    throw InputError(fmt::format("the neighbour skin must be positive, got {} m", settings_.neighbor_skin_m));
-  mesh_scratch_.resize(settings_.threads);
+  mesh_scratch_.resize(model_.settings.threads);
   wall_generated_heat_W_.assign(n_bodies, 0.0);
   wall_power_W_.assign(n_bodies, 0.0);
   audit_.wall_work_by_body_J.assign(n_bodies, 0.0);
-  refresh_thermal_material_cache();
   wall_node_begin_.assign(1, 0);
   for (std::size_t b = 0; b < n_bodies; ++b) {
     ThermalWall& w = wall_thermal[b];
@@ -138,16 +132,15 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
 void Simulation::add_particle(const NewParticle& p) {
   refuse_under_ranks("adding particles");
   const std::size_t i = particles.add(p);
-  particles.conductivity_W_per_mK[i] = materials[p.material].conductivity_W_per_mK.at(p.temperature_K);
+  particles.conductivity_W_per_mK[i] = model_.materials[p.material].conductivity_W_per_mK.at(p.temperature_K);
   if (heat_enabled()) ledger_.reference_energy_J += particle_thermal_energy_J(i);
   audit_.exchanged_J += particle_mechanical_energy_J(i);
   forces_current_ = false;
 }
 
-void Simulation::refresh_contact_parameters() {
-  contact_parameters_ = ContactParameterTable(materials);
-  conduction_parameters_ = ConductionParameterTable(materials, settings_.heat.time_scale_factor);
-  refresh_thermal_material_cache();
+void Simulation::set_materials(MaterialTable materials) {
+  model_.materials = std::move(materials);
+  model_.derive_tables();
   forces_current_ = false;
 }
 
@@ -167,12 +160,12 @@ void Simulation::rebuild_neighbors(bool history_saved) {
   const double max_cells = 16.0 * static_cast<double>(grid_particles) + 4096.0;
   if (grid_.cell_count() <= 1 || static_cast<double>(grid_.cell_count()) > max_cells ||
       static_cast<double>(grid_.cell_count()) < 0.25 * max_cells)
-    grid_ = CellGrid(settings_.domain.min_m, settings_.domain.max_m,
-                     2.0 * settings_.min_particle_radius_m + settings_.neighbor_skin_m, max_cells);
+    grid_ = CellGrid(model_.settings.domain.min_m, model_.settings.domain.max_m,
+                     2.0 * model_.settings.min_particle_radius_m + model_.settings.neighbor_skin_m, max_cells);
   active_threads_ = force_pass_threads();
-  NeighborSkin skin(settings_.neighbor_skin_m);
-  skin.time_step_s = settings_.time_step_s;
-  skin.body_step_m = walls.surface_steps_m(time_s_, settings_.time_step_s);
+  NeighborSkin skin(model_.settings.neighbor_skin_m);
+  skin.time_step_s = model_.settings.time_step_s;
+  skin.body_step_m = walls.surface_steps_m(time_s_, model_.settings.time_step_s);
   neighbors_.rebuild(particles, walls, grid_, skin, active_threads_, history_saved, halo_ ? &ghost_ : nullptr);
   lists_outdated_ = false;
   walls.mark_neighbor_build();
@@ -187,13 +180,13 @@ void Simulation::rebuild_neighbors(bool history_saved) {
 
 int Simulation::force_pass_threads() const {
   // Few particles per thread: fewer threads (the sums do not depend on how many).
-  return static_cast<int>(std::clamp<std::size_t>(particles.size() / settings_.min_particles_per_thread, 1,
-                                                  static_cast<std::size_t>(settings_.threads)));
+  return static_cast<int>(std::clamp<std::size_t>(particles.size() / model_.settings.min_particles_per_thread, 1,
+                                                  static_cast<std::size_t>(model_.settings.threads)));
 }
 
 void Simulation::ensure_forces() {
   if (forces_current_) return;
-  if (rebuild_everywhere(neighbors_.needs_rebuild(particles, walls, settings_.threads)))
+  if (rebuild_everywhere(neighbors_.needs_rebuild(particles, walls, model_.settings.threads)))
     rebuild_neighbors();
   else if (halo_)
     halo_->refresh_ghosts(particles);
@@ -218,14 +211,14 @@ void Simulation::step() {
     if (!halo_) throw;
     failed = std::current_exception();
   }
-  walls.advance(time_s_, settings_.time_step_s);
-  time_s_ += settings_.time_step_s;
+  walls.advance(time_s_, model_.settings.time_step_s);
+  time_s_ += model_.settings.time_step_s;
   ++step_;
   if (rebuild_everywhere(neighbors_.needs_rebuild(particles.size(), max_displacement_ratio2, walls), failed))
     rebuild_neighbors();
   else if (halo_)
     halo_->refresh_ghosts(particles);
-  compute_forces(settings_.time_step_s);
+  compute_forces(model_.settings.time_step_s);
   if (halo_) {
     try {
       second_half_kick();
@@ -236,8 +229,8 @@ void Simulation::step() {
   } else {
     second_half_kick();
   }
-  book_mechanical_energy(settings_.time_step_s);
-  if (heat_enabled()) update_temperatures(settings_.time_step_s);
+  book_mechanical_energy(model_.settings.time_step_s);
+  if (heat_enabled()) update_temperatures(model_.settings.time_step_s);
 }
 
 void Simulation::book_end_of_step_losses() {
@@ -253,8 +246,8 @@ void Simulation::book_end_of_step_losses() {
   // heats the particle whose velocity it concerns, except the part of its wall contacts
   // that the partition gives the wall (WallLossShare; docs/physics.md, "Energy audit").
   const std::size_t n = particles.size();
-  const double half_dt = 0.5 * settings_.time_step_s;
-  const bool heats = heat_enabled() && settings_.heat.dissipation_heating;
+  const double half_dt = 0.5 * model_.settings.time_step_s;
+  const bool heats = heat_enabled() && model_.settings.heat.dissipation_heating;
   const LossyActions* __restrict lossy = particle_lossy_.data();
   const double* __restrict wall_power = rolling_wall_power_W_.data();
   const Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
@@ -331,7 +324,7 @@ void Simulation::book_mechanical_energy(double dt_s) {
 }
 
 double Simulation::particle_mechanical_energy_J(std::size_t i) const {
-  double e = -particles.mass_kg[i] * dot(settings_.gravity_m_per_s2, particles.position_m[i]);
+  double e = -particles.mass_kg[i] * dot(model_.settings.gravity_m_per_s2, particles.position_m[i]);
   if (particles.inv_mass_per_kg[i] > 0.0) e += 0.5 * particles.mass_kg[i] * norm2(particles.velocity_m_per_s[i]);
   if (particles.inv_inertia[i] > 0.0)
     e += 0.5 * norm2(particles.angular_velocity_rad_per_s[i]) / particles.inv_inertia[i];
@@ -364,7 +357,7 @@ void Simulation::advance(std::uint64_t steps) {
 }
 
 double Simulation::first_half_kick_and_drift() {
-  const double dt = settings_.time_step_s, half_dt = 0.5 * dt;
+  const double dt = model_.settings.time_step_s, half_dt = 0.5 * dt;
   const std::size_t n = particles.size();
   const std::vector<Vec3>& at_build = neighbors_.positions_at_build_m();
   int escaped = 0;
@@ -374,9 +367,9 @@ double Simulation::first_half_kick_and_drift() {
   const Vec3* __restrict v = particles.velocity_m_per_s.data();
   const Vec3* __restrict x_build = at_build.data();
   const double* __restrict inv_half2 = neighbors_.inverse_half_skin2().data();
-  const Domain domain = settings_.domain;
+  const Domain domain = model_.settings.domain;
   const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();  // their ranks move them
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) \
+#pragma omp parallel for schedule(static) num_threads(model_.settings.threads) if (n > 2048) \
     reduction(max : escaped, max_ratio2)
   for (std::size_t i = 0; i < n; ++i) {
     if (ghost && ghost[i]) continue;
@@ -386,7 +379,7 @@ double Simulation::first_half_kick_and_drift() {
     max_ratio2 = std::max(max_ratio2, norm2(x[i] - x_build[i]) * inv_half2[i]);
   }
   if (escaped) {
-    if (settings_.lost_particles == LostParticles::stop) report_blow_up("left the domain", time_s_ + dt, step_ + 1);
+    if (model_.settings.lost_particles == LostParticles::stop) report_blow_up("left the domain", time_s_ + dt, step_ + 1);
     if (halo_) {
       // Over ranks the lost go at this step's build, which every rank then makes
       // (redistribute_particles); a non-finite state is a blow-up, raised at the vote.
@@ -403,14 +396,14 @@ double Simulation::first_half_kick_and_drift() {
 }
 
 void Simulation::second_half_kick() {
-  const double dt = settings_.time_step_s, half_dt = 0.5 * dt;
+  const double dt = model_.settings.time_step_s, half_dt = 0.5 * dt;
   const std::size_t n = particles.size();
   int too_fast = 0;
   const HalfKick kick(particles, half_dt);
   const Vec3* __restrict v = particles.velocity_m_per_s.data();
   const double* __restrict radius = particles.radius_m.data();
   const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048) reduction(max : too_fast)
+#pragma omp parallel for schedule(static) num_threads(model_.settings.threads) if (n > 2048) reduction(max : too_fast)
   for (std::size_t i = 0; i < n; ++i) {
     if (ghost && ghost[i]) continue;
     kick(i);
@@ -430,8 +423,8 @@ void Simulation::remove_lost_particles() {
     const Vec3& v = particles.velocity_m_per_s[i];
     // A non-finite state is a blow-up, never a loss.
     if (!std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z))
-      report_blow_up("left the domain", time_s_ + settings_.time_step_s, step_ + 1);
-    if (settings_.domain.contains(x)) continue;
+      report_blow_up("left the domain", time_s_ + model_.settings.time_step_s, step_ + 1);
+    if (model_.settings.domain.contains(x)) continue;
     lost[i] = 1;
     ++count;
     // Its heat leaves with it: the ledger's reference drops as insertion raised it; so
@@ -444,7 +437,7 @@ void Simulation::remove_lost_particles() {
   if (lost_particle_count_ == 0)
     spdlog::warn("t = {:.6g} s: {} particle(s) left the domain and were removed (domain.lost_particles: remove); "
                  "the time series counts them in 'particles_lost'",
-                 time_s_ + settings_.time_step_s, count);
+                 time_s_ + model_.settings.time_step_s, count);
   lost_particle_count_ += count;
   drop_particles(lost);
 }
@@ -487,7 +480,7 @@ void Simulation::jump_to(double time_s) {
   if (!(time_s > time_s_)) return;
   const double from_s = time_s_;
   const auto pieces = static_cast<std::uint64_t>(
-      std::ceil((time_s - from_s) / std::max(settings_.time_step_s, (time_s - from_s) / 10000.0)));
+      std::ceil((time_s - from_s) / std::max(model_.settings.time_step_s, (time_s - from_s) / 10000.0)));
   for (std::uint64_t k = 0; k < pieces; ++k) {
     const double start_s = from_s + (time_s - from_s) * static_cast<double>(k) / static_cast<double>(pieces);
     const double end_s = from_s + (time_s - from_s) * static_cast<double>(k + 1) / static_cast<double>(pieces);
@@ -498,13 +491,13 @@ void Simulation::jump_to(double time_s) {
 }
 
 void Simulation::report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const {
-  const double dt = settings_.time_step_s;
+  const double dt = model_.settings.time_step_s;
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Vec3& x = particles.position_m[i];
     const Vec3& v = particles.velocity_m_per_s[i];
     const double speed = norm(v);
     const bool bad_state = !std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z);
-    const bool escaped = !settings_.domain.contains(x);
+    const bool escaped = !model_.settings.domain.contains(x);
     const bool too_fast = speed * dt > 0.5 * particles.radius_m[i];
     if (!(bad_state || escaped || too_fast)) continue;
     const std::string state = bad_state ? "has a non-finite position or velocity" : what;
@@ -527,7 +520,7 @@ void Simulation::apply_own_spin_rolling() {
   // EDEM's own-spin rolling, once every other torque on the particle is in (contacts and
   // bonds): the implicit static limit needs them all (RollingOwnSpin).
   const std::size_t n = particles.size();
-  const double dt = settings_.time_step_s;
+  const double dt = model_.settings.time_step_s;
   const Vec3* __restrict w = particles.angular_velocity_rad_per_s.data();
   const double* __restrict inv_inertia = particles.inv_inertia.data();
   const double* __restrict resistance = own_spin_resistance_N_m_.data();
@@ -556,7 +549,7 @@ void Simulation::compute_forces(double slip_time_s) {
   else
     books ? compute_forces_and_heat<false, true>(slip_time_s) : compute_forces_and_heat<false, false>(slip_time_s);
   if (!bonds_.empty()) apply_bonds(slip_time_s);
-  if (contact_parameters_.any_own_spin()) apply_own_spin_rolling();
+  if (model_.contact.any_own_spin()) apply_own_spin_rolling();
   if (!particle_lossy_.empty()) book_end_of_step_losses();
   // The losses and stored energy of contacts and bonds, block by block in order.
   generated_heat_W_ = dissipated_power_W_ = contact_elastic_energy_J_ = spring_source_W_ = 0.0;
@@ -576,8 +569,8 @@ void Simulation::compute_forces(double slip_time_s) {
 template <bool Heat, bool Audit>
 void Simulation::compute_forces_and_heat(double slip_time_s) {
   const int threads = active_threads_;
-  const double dt = settings_.time_step_s;
-  const Vec3 gravity = settings_.gravity_m_per_s2;
+  const double dt = model_.settings.time_step_s;
+  const Vec3 gravity = model_.settings.gravity_m_per_s2;
   const double now = time_s_;
   const std::size_t n_bodies = walls.bodies.size();
   std::uint64_t particle_contacts = 0, wall_contacts = 0;
@@ -608,7 +601,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const std::uint32_t* thread_begin = neighbors_.thread_begin.data();
   const std::uint32_t* __restrict owner_offset = neighbors_.owner_offset.data();
   const std::uint32_t* __restrict owner_entry = neighbors_.owner_entry.data();
-  const bool own_spin_rolling = contact_parameters_.any_own_spin();
+  const bool own_spin_rolling = model_.contact.any_own_spin();
   partner_share_.resize(neighbors_.partner.size());
   partner_touching_.resize(neighbors_.partner.size());
   partner_heat_W_.resize(Heat ? neighbors_.partner.size() : 0);
@@ -627,8 +620,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   block_energy_.resize(blocks);
   WallShare* __restrict block_wall = block_wall_share_.data();
   BlockEnergy* __restrict block_energy = block_energy_.data();
-  const ContactParameterTable& table = contact_parameters_;
-  const ConductionParameterTable& conduction = conduction_parameters_;
+  const ContactParameterTable& table = model_.contact;
+  const ConductionParameterTable& conduction = model_.conduction;
   const double* __restrict temperature = particles.temperature_K.data();
   const double* __restrict conductivity = particles.conductivity_W_per_mK.data();
   double* __restrict heat = particles.heat_flow_W.data();
@@ -636,12 +629,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   double* __restrict own_spin = own_spin_resistance_N_m_.data();
   // Heat from the contacts' losses (docs/physics.md, "Friction heat and its partition"): the sliding
   // power, or every loss; shared by the partition model.
-  const bool generate = Heat && settings_.heat.generates_heat();
-  const bool all_losses = settings_.heat.dissipation_heating;
-  const HeatPartitionModel partition = settings_.heat.partition;
-  const double fixed_wall_share = settings_.heat.friction_partition;
+  const bool generate = Heat && model_.settings.heat.generates_heat();
+  const bool all_losses = model_.settings.heat.dissipation_heating;
+  const HeatPartitionModel partition = model_.settings.heat.partition;
+  const double fixed_wall_share = model_.settings.heat.friction_partition;
   constexpr bool audit = Audit;
-  const bool weighted = generate && settings_.heat.partition_weighs_bodies();
+  const bool weighted = generate && model_.settings.heat.partition_weighs_bodies();
   if (weighted) fill_partition_weights();
   particle_lossy_.resize(audit ? particles.size() : 0);
   rolling_wall_power_W_.resize(audit ? particles.size() : 0);
@@ -1019,7 +1012,7 @@ double Simulation::rotational_kinetic_energy_J() const {
 double Simulation::gravitational_potential_energy_J() const {
   ExactSum sum;
   for (std::size_t i = 0; i < particles.size(); ++i)
-    if (!is_ghost(i)) sum += -particles.mass_kg[i] * dot(settings_.gravity_m_per_s2, particles.position_m[i]);
+    if (!is_ghost(i)) sum += -particles.mass_kg[i] * dot(model_.settings.gravity_m_per_s2, particles.position_m[i]);
   return total_over_ranks(sum);
 }
 

@@ -18,6 +18,7 @@
 #include "sim/energy_audit.hpp"
 #include "sim/impact_record.hpp"
 #include "sim/particle_halo.hpp"
+#include "sim/simulation_model.hpp"
 #include "thermal/conduction_parameters.hpp"
 #include "thermal/heat_partition.hpp"
 #include "thermal/thermal_ledger.hpp"
@@ -36,60 +37,6 @@ struct CheckpointParticles {
 };
 /// Reads them (simulation_checkpoint.cpp); throws CheckpointError.
 CheckpointParticles read_checkpoint_particles(const Checkpoint& checkpoint);
-
-struct Domain {
-  Vec3 min_m, max_m;
-  bool contains(const Vec3& x) const {
-    return x.x >= min_m.x && x.y >= min_m.y && x.z >= min_m.z && x.x <= max_m.x && x.y <= max_m.y &&
-           x.z <= max_m.z;
-  }
-};
-
-/// Heat transfer settings (DESIGN.md section 2, "Conduction", "Thermal stepping").
-struct HeatSettings {
-  bool enabled = false;
-  double time_scale_factor = 1.0;  // S: every conductance x S, for compressed mechanical time
-  // Heat generated at contacts (docs/physics.md, "Friction heat and its partition"): the sliding
-  // power only (friction_heating), or every loss of contacts and bonds (dissipation_heating).
-  bool friction_heating = false;
-  bool dissipation_heating = false;
-  HeatPartitionModel partition = HeatPartitionModel::fixed;
-  double friction_partition = 0.5;  // `fixed`: the particle's share at a wall (two particles: half each)
-  bool generates_heat() const { return friction_heating || dissipation_heating; }
-  /// The partition weighs each body by its properties (conductivity or effusivity).
-  bool partition_weighs_bodies() const {
-    return generates_heat() &&
-           (partition == HeatPartitionModel::conductivity || partition == HeatPartitionModel::effusivity);
-  }
-  // Per-particle peak temperature and time above the threshold (measure/thermal_history.hpp),
-  // recorded in the temperature update when on.
-  bool track_thermal_history = false;
-  double thermal_history_threshold_K = 203.15;  // -70 degC
-};
-
-/// What happens to a particle that leaves the domain: `stop` the run with a blow-up
-/// error (a leak or an instability is a bug in the scenario), or `remove` it and go on
-/// (fragments thrown off a failing sample, cuttings flung by a drill), counting it and
-/// booking its thermal energy as lost.
-enum class LostParticles { stop, remove };
-
-struct SimulationSettings {
-  Domain domain;
-  LostParticles lost_particles = LostParticles::stop;
-  Vec3 gravity_m_per_s2{0.0, 0.0, -9.81};
-  double time_step_s = 0.0;
-  double neighbor_skin_m = 0.0;
-  double min_particle_radius_m = 0.0;  // sizes the neighbour grid
-  double max_particle_radius_m = 0.0;  // the largest a run inserts: how far ghosts reach under MPI
-  int threads = 1;
-  // Below this many particles per thread the force pass is shorter than the threads'
-  // synchronisation, so fewer threads run it.
-  std::size_t min_particles_per_thread = 2500;
-  // Keep the mechanical energy books (EnergyAudit: losses, the springs' energy, the
-  // walls' work); dissipation heating keeps them whatever this says.
-  bool energy_audit = false;
-  HeatSettings heat;
-};
 
 /// Contact counts and extremes seen in the last force pass.
 struct ContactStatistics {
@@ -111,8 +58,11 @@ class Simulation {
 
   /// Adds particles; forces and neighbour lists are refreshed before the next step.
   void add_particle(const NewParticle& p);
-  /// Call after changing the material pair properties (stage overrides).
-  void refresh_contact_parameters();
+  /// What the run does not change while it steps: settings, materials, their tables, bond kinds.
+  const SimulationModel& model() const { return model_; }
+  /// Replaces the materials (a stage's overrides of the pair properties, and their
+  /// undoing), deriving the model's tables again; forces are found again before the next step.
+  void set_materials(MaterialTable materials);
   /// Removes the flagged particles (flags by index) between steps, with their bonds and
   /// contact history; their heat leaves the ledger's reference, as for lost particles.
   void remove_particles(const std::vector<char>& remove_flag);
@@ -133,12 +83,12 @@ class Simulation {
 
   double time_s() const { return time_s_; }
   std::uint64_t step_count() const { return step_; }
-  double time_step_s() const { return settings_.time_step_s; }
-  int threads() const { return settings_.threads; }
+  double time_step_s() const { return model_.settings.time_step_s; }
+  int threads() const { return model_.settings.threads; }
   /// Threads of the force pass for the current particle count: fewer than threads() when
   /// there are fewer than settings().min_particles_per_thread each (results are the same).
   int force_pass_threads() const;
-  const SimulationSettings& settings() const { return settings_; }
+  const SimulationSettings& settings() const { return model_.settings; }
   const ContactStatistics& contact_statistics() const { return stats_; }
   const NeighborList& neighbor_list() const { return neighbors_; }
   /// Particles removed on leaving the domain (LostParticles::remove), since the start.
@@ -154,13 +104,15 @@ class Simulation {
   double max_overlap_fraction() const;
 
   // Heat (DESIGN.md section 2; simulation_heat.cpp).
-  bool heat_enabled() const { return settings_.heat.enabled; }
+  bool heat_enabled() const { return model_.settings.heat.enabled; }
   /// Sum of m_i h_i(T_i) over particles (h = integral of c from 0 K) plus C_w T_w of lumped walls.
   double thermal_energy_J() const;
   const ThermalLedger& thermal_ledger() const { return ledger_; }
   /// Whether the mechanical energy books are kept: settings().energy_audit, or dissipation
   /// heating, which needs the losses.
-  bool keeps_energy_audit() const { return settings_.energy_audit || (heat_enabled() && settings_.heat.dissipation_heating); }
+  bool keeps_energy_audit() const {
+    return model_.settings.energy_audit || (heat_enabled() && model_.settings.heat.dissipation_heating);
+  }
   /// The mechanical energy books (sim/energy_audit.hpp), kept whether heat is on or not.
   const EnergyAudit& energy_audit() const { return audit_; }
   /// The fastest impact of any contact so far, against the step (sim/impact_record.hpp).
@@ -193,7 +145,7 @@ class Simulation {
   /// The bond kinds and, per material pair (a * materials + b, symmetric), the kind
   /// that bonds them or -1. Bonds form only by form_bonds().
   void configure_bonds(std::vector<BondParameters> kinds, std::vector<int> kind_of_material_pair);
-  bool bonds_configured() const { return !bond_kinds_.empty(); }
+  bool bonds_configured() const { return !model_.bond_kinds.empty(); }
   /// Bonds every pair of particles closer than R_i + R_j + gap min(R_i, R_j) whose
   /// materials have a bond kind, both allowed by `materials` and `regions` (flags by
   /// material index and region tag; empty: all), and not bonded yet. Returns the number
@@ -295,7 +247,6 @@ class Simulation {
   void merge_fastest_impact_over_ranks();
 
   ParticleStore particles;
-  MaterialTable materials;
   WallSet walls;
   std::vector<ThermalWall> wall_thermal;  // index for index with walls.bodies
 
@@ -340,7 +291,6 @@ class Simulation {
   void compute_forces_and_heat(double slip_time_s);
   /// Advances particle and wall temperatures by dt with the heat flows of the last pass.
   void update_temperatures(double dt_s);
-  void refresh_thermal_material_cache();
   /// Each particle's weight in the heat partition, at its temperature (heat_partition.hpp).
   void fill_partition_weights();
   /// A wall's weight, from its material at the wall's temperature (its own contact conductivity
@@ -363,9 +313,7 @@ class Simulation {
   double bond_elastic_energy_J() const;
   [[noreturn]] void report_blow_up(const std::string& what, double at_time_s, std::uint64_t at_step) const;
 
-  SimulationSettings settings_;
-  ContactParameterTable contact_parameters_;
-  ConductionParameterTable conduction_parameters_;
+  SimulationModel model_;
   ThermalLedger ledger_;
   EnergyAudit audit_;
   // An old checkpoint held no audit: the contact springs' energy joins it at the next pass.
@@ -468,8 +416,6 @@ class Simulation {
   ImpactRecord fastest_impact_;
   double contact_elastic_energy_J_ = 0.0;      // stored in the contacts' springs
   double spring_source_W_ = 0.0;            // the tangential springs' own source (EnergyAudit)
-  std::vector<double> inv_specific_heat_;      // per material: 1/c if constant, else 0
-  std::vector<char> conductivity_varies_;      // per material: k is a table
   std::vector<WallContactHeat> wall_contact_heat_;  // per wall node, taken at each contact pass
 
   ParticleHalo* halo_ = nullptr;         // under MPI only
@@ -483,8 +429,6 @@ class Simulation {
   bool lists_outdated_ = false;
 
   BondStore bonds_;
-  std::vector<BondParameters> bond_kinds_;
-  std::vector<int> bond_kind_of_pair_;  // materials x materials, -1: no bond
   BondCounts bond_counts_;
   std::vector<BondBreakEvent> bond_breaks_;  // not yet taken
   std::size_t bond_breaks_at_split_ = 0;     // under MPI: those from before the split

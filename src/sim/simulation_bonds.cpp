@@ -19,7 +19,7 @@
 namespace regodem {
 
 void Simulation::configure_bonds(std::vector<BondParameters> kinds, std::vector<int> kind_of_material_pair) {
-  const std::size_t n = materials.size();
+  const std::size_t n = model_.materials.size();
   if (kind_of_material_pair.size() != n * n)
     throw InputError(fmt::format("bond kinds given for {} material pairs, expected {}", kind_of_material_pair.size(), n * n));
   for (const BondParameters& p : kinds)
@@ -33,8 +33,8 @@ void Simulation::configure_bonds(std::vector<BondParameters> kinds, std::vector<
   for (int k : kind_of_material_pair)
     if (k >= static_cast<int>(kinds.size()))
       throw InputError(fmt::format("bond kind {} of {} does not exist", k, kinds.size()));
-  bond_kinds_ = std::move(kinds);
-  bond_kind_of_pair_ = std::move(kind_of_material_pair);
+  model_.bond_kinds = std::move(kinds);
+  model_.bond_kind_of_pair = std::move(kind_of_material_pair);
 }
 
 BondCounts Simulation::bond_counts() const {
@@ -72,7 +72,7 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
   // A current list holds every pair closer than R_i + R_j + skin.
   rebuild_neighbors();
   forces_current_ = false;
-  const std::size_t n_materials = materials.size();
+  const std::size_t n_materials = model_.materials.size();
   auto allowed = [&](std::uint32_t p) {
     const bool material_ok = material_allowed.empty() || material_allowed[particles.material[p]];
     const bool region_ok = region_allowed.empty() ||
@@ -92,18 +92,18 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
     for (std::uint32_t k = neighbors_.offset[i]; k < neighbors_.offset[i + 1]; ++k) {
       const std::uint32_t j = neighbors_.partner[k];
       if (!allowed(j)) continue;
-      const int bond_kind = bond_kind_of_pair_[particles.material[i] * n_materials + particles.material[j]];
+      const int bond_kind = model_.bond_kind_of_pair[particles.material[i] * n_materials + particles.material[j]];
       if (bond_kind < 0) continue;
       const double ri = particles.radius_m[i], rj = particles.radius_m[j];
       const double gap = gap_fraction * std::min(ri, rj);
-      if (gap > settings_.neighbor_skin_m)
+      if (gap > model_.settings.neighbor_skin_m)
         throw SimulationError(fmt::format(
             "the bonding gap {:.4g} m ({} x the radius {:.4g} m) is larger than the neighbour skin {:.4g} m, so "
             "pairs that far apart are not all listed: use a smaller gap or a larger neighbor_skin",
-            gap, gap_fraction, std::min(ri, rj), settings_.neighbor_skin_m));
+            gap, gap_fraction, std::min(ri, rj), model_.settings.neighbor_skin_m));
       if (norm(particles.position_m[j] - particles.position_m[i]) > ri + rj + gap) continue;
       if (!existing.insert(key(particles.id[i], particles.id[j])).second) continue;
-      const BondParameters& p = bond_kinds_[static_cast<std::size_t>(bond_kind)];
+      const BondParameters& p = model_.bond_kinds[static_cast<std::size_t>(bond_kind)];
       bonds_.add(particles, i, j, static_cast<std::uint16_t>(bond_kind),
                  BondSection::of_radius(p.radius_multiplier * std::min(ri, rj)));
     }
@@ -123,7 +123,7 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
     double translational = 0.0, rotational = 0.0;
     for (std::uint32_t e = bonds_.bond_offset[q]; e < bonds_.bond_offset[q + 1]; ++e) {
       const std::uint32_t b = bonds_.bond_entry[e] / 2;
-      const BondParameters& p = bond_kinds_[bonds_.kind[b]];
+      const BondParameters& p = model_.bond_kinds[bonds_.kind[b]];
       const BondSection& s = bonds_.section[b];
       const double arm = particles.radius_m[q];
       limit = std::min(limit, std::sqrt(1.0 + p.damping_ratio * p.damping_ratio) - p.damping_ratio);
@@ -134,7 +134,7 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
     const double omega2 = std::max(translational * particles.inv_mass_per_kg[q], rotational * particles.inv_inertia[q]);
     if (omega2 > worst) worst = omega2, worst_particle = q;
   }
-  const double dt = settings_.time_step_s;
+  const double dt = model_.settings.time_step_s;
   if (std::sqrt(worst) * dt > limit)
     throw SimulationError(fmt::format(
         "the bonds make the time step {:.4g} s unstable: particle {} has a bond frequency of {:.4g} rad/s, which "
@@ -148,7 +148,7 @@ double Simulation::bond_elastic_energy_J() const {
   ExactSum sum;
   for (std::size_t b = 0; b < bonds_.size(); ++b)
     if (!is_ghost(bonds_.local_i[b]))
-      sum += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
+      sum += regodem::bond_elastic_energy_J(model_.bond_kinds[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
   return total_over_ranks(sum);
 }
 
@@ -164,7 +164,7 @@ void Simulation::apply_bonds(double dt_s) {
   const double* __restrict temperature = particles.temperature_K.data();
   const double* __restrict conductivity = particles.conductivity_W_per_mK.data();
   const bool heat = heat_enabled();
-  const ConductionPairParameters bond_conduction = geometric_radius_conduction(settings_.heat.time_scale_factor);
+  const ConductionPairParameters bond_conduction = geometric_radius_conduction(model_.settings.heat.time_scale_factor);
   int any_broken = 0;
 
   // Undamped bonds (the paper's, and the default) take their step in batches, a vector
@@ -172,7 +172,7 @@ void Simulation::apply_bonds(double dt_s) {
   // does not depend on the bonds beside it, so neither does the run on the thread count.
   // Damped kinds, and a bond whose spin angle is not small, go through update_bond one
   // bond at a time (the two agree to round-off).
-  const bool in_lanes = std::none_of(bond_kinds_.begin(), bond_kinds_.end(),
+  const bool in_lanes = std::none_of(model_.bond_kinds.begin(), model_.bond_kinds.end(),
                                      [](const BondParameters& p) { return p.damping_ratio > 0.0; });
   constexpr std::size_t batch_size = BondBatch::kBonds;
   const std::size_t batches = (nb + batch_size - 1) / batch_size;
@@ -182,7 +182,7 @@ void Simulation::apply_bonds(double dt_s) {
   source.velocity_m_per_s = v;
   source.angular_velocity_rad_per_s = w;
   source.radius_m = radius;
-  source.kinds = bond_kinds_.data();
+  source.kinds = model_.bond_kinds.data();
 
 #pragma omp parallel num_threads(threads) if (nb > 2048) reduction(max : any_broken)
   {
@@ -196,7 +196,7 @@ void Simulation::apply_bonds(double dt_s) {
       for (int l = 0; l < count; ++l) {
         const std::size_t b = first + static_cast<std::size_t>(l);
         const std::uint32_t i = bonds_.local_i[b], j = bonds_.local_j[b];
-        const BondParameters& p = bond_kinds_[bonds_.kind[b]];
+        const BondParameters& p = model_.bond_kinds[bonds_.kind[b]];
         const BondSection& section = bonds_.section[b];
         const bool alone = !in_lanes || batch.alone(l);
         const BondLoads loads_before = alone ? bonds_.loads_of(b) : batch.loads_before(l);
@@ -234,7 +234,7 @@ void Simulation::apply_bonds(double dt_s) {
           a.loss_W = 0.5 *
                      (regodem::bond_elastic_energy_J(p, section, loads_before) +
                       regodem::bond_elastic_energy_J(p, section, loads)) /
-                     settings_.time_step_s;
+                     model_.settings.time_step_s;
           any_broken = 1;
         } else if (heat && p.conducts_heat) {
           // The bond radius as a contact radius: G = 2 k_c R_b S.
@@ -262,8 +262,8 @@ void Simulation::apply_bonds(double dt_s) {
   // Losses go to the contact pass's blocks of particles, each counted at its bond's i;
   // with dissipation heating they heat the two particles by the partition (the contact
   // pass filled the weights).
-  const bool losses_heat = heat && settings_.heat.dissipation_heating;
-  const bool weighted = losses_heat && settings_.heat.partition_weighs_bodies();
+  const bool losses_heat = heat && model_.settings.heat.dissipation_heating;
+  const bool weighted = losses_heat && model_.settings.heat.partition_weighs_bodies();
   const double* __restrict weight = partition_weight_.data();
   BlockEnergy* __restrict block_energy = block_energy_.data();
   constexpr std::uint32_t block_size = NeighborList::kOwnerBlock;

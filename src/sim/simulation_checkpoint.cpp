@@ -274,16 +274,16 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
   }
   {
     ByteWriter w;
-    w.put(static_cast<std::uint64_t>(materials.size()));
-    for (std::size_t m = 0; m < materials.size(); ++m) w.put_string(materials[static_cast<MaterialIndex>(m)].name);
+    w.put(static_cast<std::uint64_t>(model_.materials.size()));
+    for (std::size_t m = 0; m < model_.materials.size(); ++m) w.put_string(model_.materials[static_cast<MaterialIndex>(m)].name);
     checkpoint.add(kMaterials, 1, std::move(w));
   }
   {
     ByteWriter w;
     w.put(time_s_);
     w.put(step_);
-    w.put(settings_.time_step_s);
-    w.put(static_cast<std::int32_t>(settings_.threads));
+    w.put(model_.settings.time_step_s);
+    w.put(static_cast<std::int32_t>(model_.settings.threads));
     w.put(static_cast<std::uint8_t>(forces_current_));
     w.put(static_cast<std::int32_t>(active_threads_));
     w.put(stats_.particle_contacts);
@@ -390,12 +390,12 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
   {
     ByteReader r = checkpoint.reader(kMaterials);
     const auto count = r.get<std::uint64_t>();
-    if (count != materials.size()) r.fail(fmt::format("has {} materials, the scenario {}", count, materials.size()));
+    if (count != model_.materials.size()) r.fail(fmt::format("has {} materials, the scenario {}", count, model_.materials.size()));
     for (std::size_t m = 0; m < count; ++m) {
       const std::string name = r.get_string();
-      if (name != materials[static_cast<MaterialIndex>(m)].name)
+      if (name != model_.materials[static_cast<MaterialIndex>(m)].name)
         r.fail(fmt::format("material {} is '{}', in the scenario '{}'", m, name,
-                           materials[static_cast<MaterialIndex>(m)].name));
+                           model_.materials[static_cast<MaterialIndex>(m)].name));
     }
   }
   int saved_threads = 0;
@@ -404,9 +404,9 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     r.get(time_s_);
     r.get(step_);
     const auto dt = r.get<double>();
-    if (dt != settings_.time_step_s)
+    if (dt != model_.settings.time_step_s)
       r.fail(fmt::format("was written with a time step of {:.17g} s, the scenario gives {:.17g} s", dt,
-                         settings_.time_step_s));
+                         model_.settings.time_step_s));
     saved_threads = r.get<std::int32_t>();
     forces_current_ = r.get<std::uint8_t>() != 0;
     active_threads_ = r.get<std::int32_t>();
@@ -496,7 +496,7 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
   }
   {
     ByteReader r = checkpoint.reader(kNeighbors, kNeighborsVersion);
-    load_neighbors(r, section_version(checkpoint, kNeighbors), settings_.neighbor_skin_m, walls.bodies.size(),
+    load_neighbors(r, section_version(checkpoint, kNeighbors), model_.settings.neighbor_skin_m, walls.bodies.size(),
                    neighbors_, n, walls.primitives.size(),
                    walls.meshes.size());
   }
@@ -504,7 +504,7 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     ByteReader r = checkpoint.reader(kBonds);
     load_bonds(r, bonds_, bond_counts_, bond_breaks_);
     for (std::uint16_t k : bonds_.kind)
-      if (k >= bond_kinds_.size()) r.fail(fmt::format("has a bond of kind {}, the scenario {} kinds", k, bond_kinds_.size()));
+      if (k >= model_.bond_kinds.size()) r.fail(fmt::format("has a bond of kind {}, the scenario {} kinds", k, model_.bond_kinds.size()));
     if (bonds_.refresh_indices(particles) < bonds_.size()) r.fail("has a bond to a particle that does not exist");
   }
   bool books_kept = false;
@@ -572,7 +572,7 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
       if (i < particles.peak_temperature_K.size()) particles.peak_temperature_K[i] = *temperature_K;
       if (i < particles.time_above_threshold_s.size()) particles.time_above_threshold_s[i] = 0.0;
     }
-    particles.conductivity_W_per_mK[i] = materials[m].conductivity_W_per_mK.at(particles.temperature_K[i]);
+    particles.conductivity_W_per_mK[i] = model_.materials[m].conductivity_W_per_mK.at(particles.temperature_K[i]);
     if (heat_enabled()) ledger_.reference_energy_J += particle_thermal_energy_J(i);
     audit_.exchanged_J += particle_mechanical_energy_J(i);
   }
@@ -580,7 +580,7 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
     // The particle pairs and their springs; wall entries belong to the other run's walls.
     ByteReader r = checkpoint.reader(kNeighbors, kNeighborsVersion);
     NeighborList saved;
-    load_neighbors(r, section_version(checkpoint, kNeighbors), settings_.neighbor_skin_m, walls.bodies.size(), saved,
+    load_neighbors(r, section_version(checkpoint, kNeighbors), model_.settings.neighbor_skin_m, walls.bodies.size(), saved,
                    n, std::numeric_limits<std::size_t>::max(),
                    std::numeric_limits<std::size_t>::max());
     neighbors_ = NeighborList();
@@ -597,10 +597,10 @@ void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector
     std::vector<BondBreakEvent> pending;
     load_bonds(r, bonds_, counts, pending);
     for (std::uint16_t k : bonds_.kind)
-      if (k >= bond_kinds_.size())
+      if (k >= model_.bond_kinds.size())
         r.fail(fmt::format("has bonds of kind {}, but this scenario defines {} bond kinds (bond kinds are matched by "
                            "their order in `bonds`)",
-                           k, bond_kinds_.size()));
+                           k, model_.bond_kinds.size()));
     bond_counts_ = {};
     bond_counts_.formed = bonds_.size();
     for (std::size_t b = 0; b < bonds_.size(); ++b) bonds_.broken[b] = 0;

@@ -147,7 +147,7 @@ double Simulation::ghost_skin_m() const {
   // A pair is listed within R_i + R_j + h_i + h_j, each half h at most
   // max_half_skin_factor x skin/2 (NeighborSkin); a particle of the brick is inside it at
   // the build, and until the next build no pair closes that was not listed.
-  const NeighborSkin skin(settings_.neighbor_skin_m);
+  const NeighborSkin skin(model_.settings.neighbor_skin_m);
   return skin.skin_m * std::max(1.0, skin.max_half_skin_factor);
 }
 
@@ -168,7 +168,7 @@ void Simulation::redistribute_particles() {
   // Own particles that left the domain go with the ghosts (domain.lost_particles: remove),
   // their heat and motion out of every rank's books (as remove_lost_particles does in one
   // process; the books are the run's on every rank), summed in rank order.
-  if (settings_.lost_particles == LostParticles::remove) drop_lost_over_ranks();
+  if (model_.settings.lost_particles == LostParticles::remove) drop_lost_over_ranks();
   every_rank_holds_all_ = false;  // the halo cuts the particles now
   ContactHistoryByOwner history = neighbors_.saved_history_of_kept(ghost_);
   const std::vector<double> every_work = particle_work();
@@ -213,7 +213,7 @@ void Simulation::drop_lost_over_ranks() {
   const bool everyone_holds_all = every_rank_holds_all_;
   std::vector<double> mine{0.0, 0.0, 0.0};  // thermal energy, mechanical energy, count; then the ids
   for (std::size_t i = 0; i < particles.size(); ++i) {
-    if (ghost_[i] || settings_.domain.contains(particles.position_m[i])) continue;
+    if (ghost_[i] || model_.settings.domain.contains(particles.position_m[i])) continue;
     ghost_[i] = 1;
     if (heat_enabled()) mine[0] += particle_thermal_energy_J(i);
     mine[1] += particle_mechanical_energy_J(i);
@@ -246,7 +246,7 @@ void Simulation::drop_lost_over_ranks() {
     if (!is_lost(bonds_.id_i[b]) && !is_lost(bonds_.id_j[b])) continue;
     keep[b] = 0;
     if (!was_ghost[bonds_.local_i[b]])
-      stored_J += regodem::bond_elastic_energy_J(bond_kinds_[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
+      stored_J += regodem::bond_elastic_energy_J(model_.bond_kinds[bonds_.kind[b]], bonds_.section[b], bonds_.loads_of(b));
   }
   if (!everyone_holds_all) halo_->sum_in_rank_order(std::span<double>(&stored_J, 1));
   if (keeps_energy_audit()) audit_.exchanged_J -= stored_J;

@@ -19,7 +19,7 @@
 namespace regodem {
 
 double Simulation::particle_thermal_energy_J(std::size_t i) const {
-  const TemperatureCurve& c = materials[particles.material[i]].specific_heat_J_per_kgK;
+  const TemperatureCurve& c = model_.materials[particles.material[i]].specific_heat_J_per_kgK;
   return particles.mass_kg[i] * c.integral_from_zero(particles.temperature_K[i]);
 }
 
@@ -41,7 +41,7 @@ void Simulation::set_particle_temperature_K(std::size_t i, double temperature_K)
                                  temperature_K));
   const double before_J = particle_thermal_energy_J(i);
   particles.temperature_K[i] = temperature_K;
-  particles.conductivity_W_per_mK[i] = materials[particles.material[i]].conductivity_W_per_mK.at(temperature_K);
+  particles.conductivity_W_per_mK[i] = model_.materials[particles.material[i]].conductivity_W_per_mK.at(temperature_K);
   if (i < particles.peak_temperature_K.size())
     particles.peak_temperature_K[i] = std::max(particles.peak_temperature_K[i], temperature_K);
   ledger_.reference_energy_J += particle_thermal_energy_J(i) - before_J;
@@ -50,47 +50,33 @@ void Simulation::set_particle_temperature_K(std::size_t i, double temperature_K)
 void Simulation::refresh_conductivities() {
   for (std::size_t i = 0; i < particles.size(); ++i)
     particles.conductivity_W_per_mK[i] =
-        materials[particles.material[i]].conductivity_W_per_mK.at(particles.temperature_K[i]);
-}
-
-void Simulation::refresh_thermal_material_cache() {
-  // Per material: 1/c when c is constant (the common, fast case), else 0 and the
-  // enthalpy route, h += Q dt / m then T = h^-1, which conserves energy exactly.
-  const std::size_t n_materials = materials.size();
-  inv_specific_heat_.assign(n_materials, 0.0);
-  conductivity_varies_.assign(n_materials, 0);
-  for (std::size_t m = 0; m < n_materials; ++m) {
-    const Material& mat = materials[static_cast<MaterialIndex>(m)];
-    if (mat.specific_heat_J_per_kgK.is_constant() && mat.specific_heat_J_per_kgK.at(0.0) > 0.0)
-      inv_specific_heat_[m] = 1.0 / mat.specific_heat_J_per_kgK.at(0.0);
-    conductivity_varies_[m] = !mat.conductivity_W_per_mK.is_constant();
-  }
+        model_.materials[particles.material[i]].conductivity_W_per_mK.at(particles.temperature_K[i]);
 }
 
 void Simulation::fill_partition_weights() {
   const std::size_t n = particles.size();
   partition_weight_.resize(n);
-  const HeatPartitionModel model = settings_.heat.partition;
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 4096)
+  const HeatPartitionModel model = model_.settings.heat.partition;
+#pragma omp parallel for schedule(static) num_threads(model_.settings.threads) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
-    const Material& m = materials[particles.material[i]];
+    const Material& m = model_.materials[particles.material[i]];
     const double c = model == HeatPartitionModel::effusivity ? m.specific_heat_J_per_kgK.at(particles.temperature_K[i]) : 0.0;
     partition_weight_[i] = heat_partition_weight(model, particles.conductivity_W_per_mK[i], m.density_kg_per_m3, c);
   }
 }
 
 double Simulation::wall_partition_weight(const WallContactHeat& wall, MaterialIndex wall_material) const {
-  const Material& m = materials[wall_material];
+  const Material& m = model_.materials[wall_material];
   // The bulk's conductivity: the material's, else the wall's own contact conductivity.
   const double material_k = m.conductivity_W_per_mK.at(wall.temperature_K);
   const double k = material_k > 0.0 || wall.conductivity < 0.0 ? material_k : wall.conductivity;
-  return heat_partition_weight(settings_.heat.partition, k, m.density_kg_per_m3,
+  return heat_partition_weight(model_.settings.heat.partition, k, m.density_kg_per_m3,
                                m.specific_heat_J_per_kgK.at(wall.temperature_K));
 }
 
 void Simulation::update_temperatures(double dt_s) {
-  const double* __restrict inv_specific_heat = inv_specific_heat_.data();
-  const char* __restrict conductivity_varies = conductivity_varies_.data();
+  const double* __restrict inv_specific_heat = model_.inv_specific_heat.data();
+  const char* __restrict conductivity_varies = model_.conductivity_varies.data();
   const std::size_t n = particles.size();
   double* __restrict temperature = particles.temperature_K.data();
   double* __restrict conductivity = particles.conductivity_W_per_mK.data();
@@ -99,11 +85,11 @@ void Simulation::update_temperatures(double dt_s) {
   const MaterialIndex* __restrict material = particles.material.data();
   // The thermal history rides on this pass (the temperatures are in cache here): two
   // more arrays streamed, and only when a scenario asks for it.
-  const bool track = settings_.heat.track_thermal_history;
-  const double threshold_K = settings_.heat.thermal_history_threshold_K;
+  const bool track = model_.settings.heat.track_thermal_history;
+  const double threshold_K = model_.settings.heat.thermal_history_threshold_K;
   double* __restrict peak = particles.peak_temperature_K.data();
   double* __restrict time_above = particles.time_above_threshold_s.data();
-#pragma omp parallel for schedule(static) num_threads(settings_.threads) if (n > 2048)
+#pragma omp parallel for schedule(static) num_threads(model_.settings.threads) if (n > 2048)
   for (std::size_t i = 0; i < n; ++i) {
     const MaterialIndex m = material[i];
     const double energy_per_mass = heat[i] * dt_s / mass[i];
@@ -111,10 +97,10 @@ void Simulation::update_temperatures(double dt_s) {
     if (inv_specific_heat[m] > 0.0) {
       temperature[i] += energy_per_mass * inv_specific_heat[m];
     } else {
-      const TemperatureCurve& c = materials[m].specific_heat_J_per_kgK;
+      const TemperatureCurve& c = model_.materials[m].specific_heat_J_per_kgK;
       temperature[i] = c.inverse_integral(c.integral_from_zero(temperature[i]) + energy_per_mass);
     }
-    if (conductivity_varies[m]) conductivity[i] = materials[m].conductivity_W_per_mK.at(temperature[i]);
+    if (conductivity_varies[m]) conductivity[i] = model_.materials[m].conductivity_W_per_mK.at(temperature[i]);
     if (track) record_thermal_history(old_K, temperature[i], dt_s, threshold_K, peak[i], time_above[i]);
   }
 
@@ -132,7 +118,7 @@ void Simulation::update_temperatures(double dt_s) {
                                                      wall_node_begin_[b + 1] - wall_node_begin_[b]);
         const WallBoundaryHeat out =
             step_lumped_wall(w.node_temperatures_K(), w.node_heat_capacities_J_per_K(), w.node_areas_m2(),
-                             contact_heat_W, w.rod, dt_s, settings_.heat.time_scale_factor);
+                             contact_heat_W, w.rod, dt_s, model_.settings.heat.time_scale_factor);
         w.radiated_heat_J += out.radiated_J;
         w.held_end_heat_in_J += out.held_end_in_J;
         ledger_.boundary_heat_in_J += out.held_end_in_J - out.radiated_J;
@@ -157,7 +143,7 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
   for (std::size_t i = 0; i < n; ++i)
     net.heat_capacity_J_per_K[i] =
         particles.mass_kg[i] *
-        materials[particles.material[i]].specific_heat_J_per_kgK.at(particles.temperature_K[i]);
+        model_.materials[particles.material[i]].specific_heat_J_per_kgK.at(particles.temperature_K[i]);
   wall_node.assign(wall_thermal.size(), -1);
   wall_boundary.assign(wall_thermal.size(), -1);
   for (std::size_t b = 0; b < wall_thermal.size(); ++b) {
@@ -182,7 +168,7 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
       const double overlap = ri + rj - norm(particles.position_m[j] - particles.position_m[i]);
       if (overlap <= 0.0) continue;
       const double a = HertzNormal::contact_radius_m(ri * rj / (ri + rj), overlap);
-      const ConductionPairParameters& pair_heat = conduction_parameters_(mi, particles.material[j]);
+      const ConductionPairParameters& pair_heat = model_.conduction(mi, particles.material[j]);
       const double g = contact_conductance_W_per_K(
           pair_heat, pair_heat.pair_conductivity(ki, particles.conductivity_W_per_mK[j]), a);
       if (g > 0.0) net.edges.push_back({i, j, g});
@@ -192,7 +178,7 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
       if (!wh.conducts) return;
       const double a = HertzNormal::contact_radius_m(ri, ri - distance_m);
       const double g =
-          contact_conductance_W_per_K(conduction_parameters_(mi, wall_material), wh.contact_conductivity(ki), a);
+          contact_conductance_W_per_K(model_.conduction(mi, wall_material), wh.contact_conductivity(ki), a);
       if (g <= 0.0) return;
       if (wall_node[body] >= 0)
         net.edges.push_back({i, static_cast<std::uint32_t>(wall_node[body]), g});

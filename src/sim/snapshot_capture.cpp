@@ -76,8 +76,8 @@ ParticleSnapshot SimulationSnapshotWriter::particle_snapshot(const Simulation& s
         intact_bonds_[i] = static_cast<std::uint16_t>(bonds.bond_offset[i + 1] - bonds.bond_offset[i]);
     s.intact_bonds = intact_bonds_;
   }
-  for (std::size_t m = 0; m < sim.materials.size(); ++m)
-    s.material_names.push_back(sim.materials[static_cast<MaterialIndex>(m)].name);
+  for (std::size_t m = 0; m < sim.model().materials.size(); ++m)
+    s.material_names.push_back(sim.model().materials[static_cast<MaterialIndex>(m)].name);
   s.region_names = region_names_;
   return s;
 }

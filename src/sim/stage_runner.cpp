@@ -29,8 +29,9 @@ constexpr std::uint64_t kCheckEverySteps = 64;
 
 /// Applies a stage's overrides to the pair table; returns the table to restore.
 MaterialTable apply_overrides(Simulation& sim, const std::vector<PairOverride>& overrides) {
-  MaterialTable original = sim.materials;
-  const std::size_t n = sim.materials.size();
+  const MaterialTable& original = sim.model().materials;
+  MaterialTable changed = original;
+  const std::size_t n = original.size();
   for (const PairOverride& o : overrides) {
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = a; b < n; ++b) {
@@ -39,15 +40,16 @@ MaterialTable apply_overrides(Simulation& sim, const std::vector<PairOverride>& 
                                (static_cast<int>(b) == o.material_a && static_cast<int>(a) == o.material_b);
         if (!every_pair && !this_pair) continue;
         const auto ma = static_cast<MaterialIndex>(a), mb = static_cast<MaterialIndex>(b);
-        PairProperties p = sim.materials.pair(ma, mb);
+        PairProperties p = changed.pair(ma, mb);
         if (o.restitution) p.restitution = *o.restitution;
         if (o.sliding_friction) p.sliding_friction = *o.sliding_friction;
         if (o.rolling_friction) p.rolling_friction = *o.rolling_friction;
-        sim.materials.set_pair(ma, mb, p);
+        changed.set_pair(ma, mb, p);
       }
   }
-  if (!overrides.empty()) sim.refresh_contact_parameters();
-  return original;
+  MaterialTable kept = original;
+  if (!overrides.empty()) sim.set_materials(std::move(changed));
+  return kept;
 }
 
 double kinetic_energy_per_particle(const Simulation& sim) {
@@ -637,8 +639,7 @@ RunOutcome run_stages(Simulation& sim, StagePlan& plan, RunObserver& observer,
     // The state a stage ends in, also a failed or interrupted one (it shows what went wrong).
     if (snapshots.due_at_stage_end(sim.time_s())) take_snapshot(0.0);
     measurements.at_stage_end(sim, observer);
-    sim.materials = original_pairs;
-    sim.refresh_contact_parameters();
+    sim.set_materials(original_pairs);
     info.end_time_s = sim.time_s();
     observer.stage_finished(info, result, failure);
     if (result != StageResult::finished) {

@@ -38,8 +38,8 @@ StaticHeatStepper::StaticHeatStepper(Simulation& sim, const Stage& stage)
     time_step_s_ = stage.default_step_in_stability_limits() * stability_limit_s_;
   }
   if (!std::isfinite(time_step_s_)) time_step_s_ = stage.duration_s > 0.0 ? stage.duration_s : 1.0;  // nothing conducts
-  for (std::size_t m = 0; m < sim.materials.size(); ++m) {
-    const Material& mat = sim.materials[static_cast<MaterialIndex>(m)];
+  for (std::size_t m = 0; m < sim.model().materials.size(); ++m) {
+    const Material& mat = sim.model().materials[static_cast<MaterialIndex>(m)];
     specific_heat_varies_ = specific_heat_varies_ || !mat.specific_heat_J_per_kgK.is_constant();
     properties_vary_ = properties_vary_ || specific_heat_varies_ || !mat.conductivity_W_per_mK.is_constant();
   }
@@ -63,7 +63,7 @@ void StaticHeatStepper::add_energy_to_enthalpy() {
   const ParticleStore& p = sim_.particles;
   const std::vector<double>& capacity_J_per_K = solver_.network().heat_capacity_J_per_K;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const TemperatureCurve& c = sim_.materials[p.material[i]].specific_heat_J_per_kgK;
+    const TemperatureCurve& c = sim_.model().materials[p.material[i]].specific_heat_J_per_kgK;
     if (c.is_constant()) continue;  // C is exact: the solve's temperature already conserves energy
     const double energy_per_mass = capacity_J_per_K[i] * (node_temperature_K_[i] - p.temperature_K[i]) / p.mass_kg[i];
     node_temperature_K_[i] = c.inverse_integral(c.integral_from_zero(p.temperature_K[i]) + energy_per_mass);

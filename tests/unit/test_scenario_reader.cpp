@@ -1155,13 +1155,13 @@ TEST(ScenarioBuilderHeat, MapsEverythingOntoTheSimulation) {
   const PreparedRun run = PreparedRun::build(spec, 1);
   const Simulation& sim = run.simulation();
 
-  const Material& regolith = sim.materials[0];
+  const Material& regolith = sim.model().materials[0];
   EXPECT_DOUBLE_EQ(regolith.conductivity_W_per_mK.at(300.0), 14.76);
   EXPECT_DOUBLE_EQ(regolith.specific_heat_J_per_kgK.at(150.0), 450.0);  // halfway between 300 and 600
   EXPECT_DOUBLE_EQ(regolith.real_shear_modulus_Pa, 3e9);
-  EXPECT_EQ(sim.materials.pair(0, 0).conduction, ConductionLaw::radius);
-  EXPECT_EQ(sim.materials.pair(0, 1).conduction, ConductionLaw::area);
-  EXPECT_DOUBLE_EQ(sim.materials.pair(1, 0).heat_transfer_coefficient_W_per_m2K, 5e4);
+  EXPECT_EQ(sim.model().materials.pair(0, 0).conduction, ConductionLaw::radius);
+  EXPECT_EQ(sim.model().materials.pair(0, 1).conduction, ConductionLaw::area);
+  EXPECT_DOUBLE_EQ(sim.model().materials.pair(1, 0).heat_transfer_coefficient_W_per_m2K, 5e4);
 
   const HeatSettings& heat = sim.settings().heat;
   EXPECT_TRUE(heat.enabled);

@@ -196,9 +196,7 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   const std::vector<double>& half = half_skin_m_;
   search_point_.resize(n);
   for (std::size_t i = 0; i < n; ++i) search_point_[i] = {x[i], radius[i]};
-  const SearchPoint* const point = search_point_.data();
-  // Calls visit(j) for every particle j in the cells within reach_m of the point (the
-  // grid's sorted order: contiguous runs of cells along x).
+  const SearchPoint* const search_point = search_point_.data();
   // Calls visit_run(begin, end) for each run [begin, end) of particles in a row of cells
   // within reach_m of the point (the grid's sorted order: cells contiguous along x).
   const auto for_each_run_near = [&](const CellGrid& g, const Vec3& point, double reach_m, auto&& visit_run) {
@@ -215,8 +213,8 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   };
   // The same, visit(j) for every particle j of those cells.
   const auto for_each_particle_near = [&](const CellGrid& g, const Vec3& point, double reach_m, auto&& visit) {
-    for_each_run_near(g, point, reach_m, [&](std::uint32_t begin, std::uint32_t end) {
-      for (std::uint32_t j = begin; j < end; ++j) visit(j);
+    for_each_run_near(g, point, reach_m, [&](std::uint32_t run_begin, std::uint32_t run_end) {
+      for (std::uint32_t j = run_begin; j < run_end; ++j) visit(j);
     });
   };
   // Whether the segment between two particles crosses one of the thin walls (a sieve):
@@ -265,7 +263,6 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   offset.assign(n + 1, 0);
   wall_offset.assign(n + 1, 0);
   mesh_offset.assign(n + 1, 0);
-  touching_.assign(n, 0);
 
 #pragma omp parallel num_threads(threads)
   {
@@ -330,11 +327,12 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
         // learn. Those within reach are collected, then sifted.
         const Vec3 xi = x[i];
         std::uint32_t within = 0;
-        for_each_run_near(grid, xi, 2.0 * ri + hi + slow_half, [&](std::uint32_t begin, std::uint32_t end) {
-          if (near.size() < within + (end - begin)) near.resize(2 * (within + (end - begin)));
+        for_each_run_near(grid, xi, 2.0 * ri + hi + slow_half, [&](std::uint32_t run_begin, std::uint32_t run_end) {
+          const std::uint32_t run = run_end - run_begin;
+          if (near.size() < within + run) near.resize(2 * (within + run));
           std::uint32_t* __restrict out = near.data();
-          for (std::uint32_t j = begin; j < end; ++j) {
-            const SearchPoint& p = point[j];
+          for (std::uint32_t j = run_begin; j < run_end; ++j) {
+            const SearchPoint& p = search_point[j];
             const double cutoff = ri + p.radius_m + hi + slow_half;
             out[within] = j;
             within += norm2(p.position_m - xi) < cutoff * cutoff ? 1u : 0u;
@@ -350,10 +348,6 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
           partners.push_back(fast_pairs_[e].second);
         // Deterministic, cache-friendly order within the owner's list.
         std::sort(partners.begin() + static_cast<std::ptrdiff_t>(first), partners.end());
-        for (std::size_t e = first; e < partners.size(); ++e) {
-          const double touch = ri + radius[partners[e]];
-          if (norm2(x[partners[e]] - x[i]) < touch * touch) ++touching_[i];
-        }
         offset[i + 1] = static_cast<std::uint32_t>(partners.size() - first);
       }
     }
@@ -378,7 +372,6 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   restore_history(particles, threads);
 
   index_partners(n);
-  split_owners(threads);
 
   position_at_build_m_ = particles.position_m;
   ++rebuilds_;
@@ -391,30 +384,6 @@ void NeighborList::index_partners(std::size_t particle_count) {
   owner_entry.resize(partner.size());
   std::vector<std::uint32_t> fill(owner_offset.begin(), owner_offset.end() - 1);
   for (std::uint32_t k = 0; k < partner.size(); ++k) owner_entry[fill[partner[k]]++] = k;
-}
-
-void NeighborList::split_owners(int threads) {
-  // Estimated force-pass work: a list entry costs a distance check, a contact (pairs
-  // touching at the build) about ten times more; a gathered partner entry one more.
-  const std::size_t n = offset.empty() ? 0 : offset.size() - 1;
-  const bool touching_known = touching_.size() == n;
-  auto work_of = [&](std::size_t i) {
-    return 1.0 + (offset[i + 1] - offset[i]) + 3.0 * (wall_offset[i + 1] - wall_offset[i]) +
-           4.0 * (mesh_offset[i + 1] - mesh_offset[i]) + (touching_known ? 10.0 * touching_[i] : 0.0) +
-           (owner_offset.size() == n + 1 ? owner_offset[i + 1] - owner_offset[i] : 0.0);
-  };
-  thread_begin.assign(threads + 1, static_cast<std::uint32_t>(n));
-  thread_begin[0] = 0;
-  double total_work = 0.0;
-  for (std::size_t i = 0; i < n; ++i) total_work += work_of(i);
-  double work_before = 0.0;
-  int next_thread = 1;
-  for (std::size_t i = 0; i < n && next_thread < threads; ++i) {
-    // Boundaries on blocks: a block's wall sums are one thread's.
-    if (i % kOwnerBlock == 0 && work_before >= total_work * next_thread / threads)
-      thread_begin[next_thread++] = static_cast<std::uint32_t>(i);
-    work_before += work_of(i);
-  }
 }
 
 void NeighborList::restore_build_state(BuildState state) {

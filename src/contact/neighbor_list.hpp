@@ -14,7 +14,7 @@
 // The force pass is the same for any thread count: each contact's share for the
 // partner is written to its entry, and each particle then gathers them over its
 // entries as a partner (`owner_offset`/`owner_entry`, in owner order); wall sums go by
-// fixed blocks of owners (kOwnerBlock), to which the thread ranges are aligned.
+// fixed blocks of owners (kOwnerBlock), which the threads take whole, a few at a time.
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -108,9 +108,7 @@ class NeighborList {
   // pair list (index_partners()), not saved.
   std::vector<std::uint32_t> owner_offset;
   std::vector<std::uint32_t> owner_entry;
-  // Owner ranges for the force pass: thread t handles [thread_begin[t], thread_begin[t+1]),
-  // each boundary a multiple of kOwnerBlock (or the particle count).
-  std::vector<std::uint32_t> thread_begin;
+  // The force pass's blocks of owners: a block's wall sums are one thread's.
   static constexpr std::uint32_t kOwnerBlock = 64;
 
   /// Sorts the particles by cell, rebuilds both lists and carries the contact history.
@@ -123,9 +121,6 @@ class NeighborList {
   void rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid, const NeighborSkin& skin,
                int threads, bool history_saved = false, std::vector<std::uint8_t>* ghost = nullptr);
 
-  /// Splits the owners between threads by estimated work, at block boundaries (after a
-  /// build, or a restore for another thread count).
-  void split_owners(int threads);
   /// Builds owner_offset/owner_entry from the pair list (after a build or a restore).
   void index_partners(std::size_t particle_count);
 
@@ -199,7 +194,6 @@ class NeighborList {
   std::vector<std::uint32_t> cell_start_;
   std::vector<std::uint32_t> cell_of_particle_;
   std::vector<std::uint32_t> sort_order_, sort_fill_;
-  std::vector<std::uint32_t> touching_;  // per owner: partners in contact at the build
   static constexpr std::size_t kBuildChunk = 256;  // owners per chunk of a build
   struct ChunkLists {  // a chunk's entries while the build runs
     std::vector<std::uint32_t> partners, walls, mesh_walls, mesh_triangles;

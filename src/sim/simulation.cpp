@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -598,7 +599,6 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const MeshWall* meshes = walls.meshes.data();
   const WallPrimitive* __restrict primitives = walls.primitives.data();
   const WallBody* __restrict bodies = walls.bodies.data();
-  const std::uint32_t* thread_begin = neighbors_.thread_begin.data();
   const std::uint32_t* __restrict owner_offset = neighbors_.owner_offset.data();
   const std::uint32_t* __restrict owner_entry = neighbors_.owner_entry.data();
   const bool own_spin_rolling = model_.contact.any_own_spin();
@@ -673,21 +673,32 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   // the owner's block. Pass 2, after the barrier: each particle gathers its shares as a
   // partner, in owner order. Nothing is summed in an order that depends on the thread
   // count, so neither is the result (docs/architecture.md, "The step and threads").
+  // The owners go to the threads in chunks of whole blocks as the threads come free (an
+  // owner by the drill or a coarse grain costs many times another, more than the lists'
+  // estimate of the work tells): a block's sums are still one thread's, in owner order.
+  constexpr std::uint32_t chunk_size = 4 * block_size;
+  const std::uint32_t n_owners = static_cast<std::uint32_t>(particles.size());
+  const std::uint32_t chunks = (n_owners + chunk_size - 1) / chunk_size;
+  std::atomic<std::uint32_t> next_chunk{0};
 #pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
   {
     const int t = omp_get_thread_num();
-    const std::uint32_t begin = thread_begin[t], end = thread_begin[t + 1];
-    // The thread's blocks (its range starts on a block boundary; an empty range has none).
-    for (std::size_t k = begin / block_size; begin < end && k < (end + block_size - 1) / block_size; ++k) {
-      std::fill(block_wall + k * n_bodies, block_wall + (k + 1) * n_bodies, WallShare{});
-      std::fill(block_node + k * n_nodes, block_node + (k + 1) * n_nodes, NodeHeat{});
-      block_energy[k] = BlockEnergy{};
-    }
     MeshTouchFinder& finder = mesh_scratch_[t].finder;
     std::vector<MeshTouch>& touches = mesh_scratch_[t].touches;
     std::vector<char>& touched = mesh_scratch_[t].touched;
 
-    for (std::uint32_t i = begin; i < end; ++i) {
+    for (std::uint32_t i = 0, end = 0;; ++i) {
+      if (i == end) {  // the thread's next chunk, its blocks cleared
+        const std::uint32_t chunk = next_chunk.fetch_add(1, std::memory_order_relaxed);
+        if (chunk >= chunks) break;
+        i = chunk * chunk_size;
+        end = std::min(n_owners, i + chunk_size);
+        for (std::size_t k = i / block_size; k < (end + block_size - 1) / block_size; ++k) {
+          std::fill(block_wall + k * n_bodies, block_wall + (k + 1) * n_bodies, WallShare{});
+          std::fill(block_node + k * n_nodes, block_node + (k + 1) * n_nodes, NodeHeat{});
+          block_energy[k] = BlockEnergy{};
+        }
+      }
       const bool ghost_i = ghost && ghost[i];
       const std::uint64_t particle_contacts_before = particle_contacts;
       const Vec3 xi = x[i], vi = v[i], wi = w[i];
@@ -940,7 +951,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
       }
     }
 #pragma omp barrier
-    for (std::uint32_t j = begin; j < end; ++j) {
+#pragma omp for schedule(static)
+    for (std::uint32_t j = 0; j < n_owners; ++j) {
       Vec3 force_j, torque_j;
       double heat_j = 0.0, own_spin_j = 0.0;
       LossyActions lossy_j;

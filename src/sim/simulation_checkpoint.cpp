@@ -174,7 +174,7 @@ void save_neighbors(ByteWriter& w, const NeighborList& nl) {
   w.put_vector(nl.mesh_wall);
   w.put_vector(nl.mesh_triangle);
   w.put_vector(nl.mesh_tangential_history_m);
-  w.put_vector(nl.thread_begin);
+  w.put_vector(std::vector<std::uint32_t>{});  // where the threads' owner ranges were (issue 18: unused)
   const NeighborList::BuildState build = nl.build_state();
   w.put_vector(build.positions_m);
   w.put_vector(build.half_skin_m);
@@ -215,7 +215,8 @@ void load_neighbors(ByteReader& r, std::uint32_t version, double skin_m, std::si
   r.get_vector(nl.mesh_wall);
   r.get_vector(nl.mesh_triangle);
   r.get_vector(nl.mesh_tangential_history_m);
-  r.get_vector(nl.thread_begin);
+  std::vector<std::uint32_t> unused_owner_ranges;  // the threads' owner ranges of checkpoints before issue 18
+  r.get_vector(unused_owner_ranges);
   NeighborList::BuildState build;
   r.get_vector(build.positions_m);
   if (version >= 2) {
@@ -544,12 +545,9 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
     audit_awaits_contact_elastic_ = true;
   }
   // The lists do not depend on the thread count, nor do the sums over them: another
-  // thread count only splits the owners otherwise, and the run goes on bit for bit.
-  // The owners are split again whatever was saved (the split never changes a result,
-  // and a split off the block boundaries would race on the wall sums).
+  // thread count only shares the owners' blocks out otherwise, and the run goes on bit for bit.
   neighbors_.index_partners(n);
   active_threads_ = force_pass_threads();
-  neighbors_.split_owners(active_threads_);
 }
 
 void Simulation::adopt_particles(const Checkpoint& checkpoint, const std::vector<MaterialIndex>& material_of_saved,

@@ -3,6 +3,7 @@
 // display, the CSV and summary writers). The simulation layer calls these hooks; it
 // never prints or writes files itself.
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -67,6 +68,11 @@ class RunObserver {
   virtual void progress(const ProgressSnapshot& /*snapshot*/) {}
   /// Wall seconds between progress() calls (checked at step boundaries).
   virtual double progress_interval_s() const { return 0.25; }
+  /// The run's wall clock, seconds from any origin: what progress, the rates and the time
+  /// left are measured with (a test gives one that does not depend on the machine's load).
+  virtual double wall_clock_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  }
   /// One row of the time series, values in the order of columns().
   virtual void sample(const std::vector<double>& /*row*/) {}
   /// A snapshot (ParaView files) is due by the plan's SnapshotSchedule: the observer
@@ -107,6 +113,7 @@ class ObserverPair final : public RunObserver {
   double progress_interval_s() const override {
     return std::min(first_.progress_interval_s(), second_.progress_interval_s());
   }
+  double wall_clock_s() const override { return first_.wall_clock_s(); }
   void sample(const std::vector<double>& row) override { first_.sample(row), second_.sample(row); }
   void snapshot(const Simulation& sim) override { first_.snapshot(sim), second_.snapshot(sim); }
   void notice(const std::string& m) override { first_.notice(m), second_.notice(m); }

@@ -22,7 +22,7 @@ constexpr std::uint64_t kCheckEverySteps = 64;
 
 /// Applies a stage's overrides to the pair table; returns the table to restore.
 MaterialTable apply_overrides(Simulation& sim, const std::vector<PairOverride>& overrides) {
-  const MaterialTable& original = sim.model().materials;
+  MaterialTable original = sim.model().materials;
   MaterialTable changed = original;
   const std::size_t n = original.size();
   for (const PairOverride& o : overrides) {
@@ -40,9 +40,8 @@ MaterialTable apply_overrides(Simulation& sim, const std::vector<PairOverride>& 
         changed.set_pair(ma, mb, p);
       }
   }
-  MaterialTable kept = original;
   if (!overrides.empty()) sim.set_materials(std::move(changed));
-  return kept;
+  return original;
 }
 
 double kinetic_energy_per_particle(const Simulation& sim) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "core/error.hpp"
 #include "sim/simulation.hpp"
@@ -12,25 +13,16 @@
 namespace regodem {
 namespace {
 
-Material grain() {
+/// A material with what the model derives from: moduli, and c and k as given.
+Material material(const char* name, double shear_modulus_Pa, double poisson, TemperatureCurve specific_heat,
+                  TemperatureCurve conductivity) {
   Material m;
-  m.name = "grain";
+  m.name = name;
   m.density_kg_per_m3 = 3000.0;
-  m.shear_modulus_Pa = 1e6;
-  m.poisson_ratio = 0.25;
-  m.specific_heat_J_per_kgK = TemperatureCurve(800.0);
-  m.conductivity_W_per_mK = TemperatureCurve({100.0, 300.0}, {0.01, 0.03});  // a table of T
-  return m;
-}
-
-Material steel() {
-  Material m;
-  m.name = "steel";
-  m.density_kg_per_m3 = 7800.0;
-  m.shear_modulus_Pa = 79e9;
-  m.poisson_ratio = 0.3;
-  m.specific_heat_J_per_kgK = TemperatureCurve({100.0, 300.0}, {300.0, 480.0});  // a table of T
-  m.conductivity_W_per_mK = TemperatureCurve(16.0);
+  m.shear_modulus_Pa = shear_modulus_Pa;
+  m.poisson_ratio = poisson;
+  m.specific_heat_J_per_kgK = std::move(specific_heat);
+  m.conductivity_W_per_mK = std::move(conductivity);
   return m;
 }
 
@@ -47,8 +39,9 @@ SimulationSettings settings() {
 
 MaterialTable two_materials(double restitution, double sliding_friction) {
   MaterialTable materials;
-  materials.add(grain());
-  materials.add(steel());
+  // c constant and k a table of T for the grain; the other way round for the steel.
+  materials.add(material("grain", 1e6, 0.25, TemperatureCurve(800.0), TemperatureCurve({100.0, 300.0}, {0.01, 0.03})));
+  materials.add(material("steel", 79e9, 0.3, TemperatureCurve({100.0, 300.0}, {300.0, 480.0}), TemperatureCurve(16.0)));
   PairProperties p;
   p.restitution = restitution;
   p.sliding_friction = sliding_friction;

@@ -12,6 +12,7 @@
 #include "contact/contact_law.hpp"
 #include "core/error.hpp"
 #include "geometry/mesh_contact.hpp"
+#include "sim/contact_walk.hpp"
 #include "sim/overlap_scan.hpp"
 
 namespace regodem {
@@ -588,16 +589,10 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const MaterialIndex* __restrict material = particles.material.data();
   Vec3* __restrict force = particles.force_N.data();
   Vec3* __restrict torque = particles.torque_N_m.data();
-  const std::uint32_t* __restrict offset = neighbors_.offset.data();
-  const std::uint32_t* __restrict partner = neighbors_.partner.data();
   Vec3* __restrict history = neighbors_.tangential_history_m.data();
-  const std::uint32_t* __restrict wall_offset = neighbors_.wall_offset.data();
-  const std::uint32_t* __restrict wall_primitive = neighbors_.wall_primitive.data();
   Vec3* __restrict wall_history = neighbors_.wall_tangential_history_m.data();
   const std::uint32_t* __restrict mesh_triangle = neighbors_.mesh_triangle.data();
   Vec3* __restrict mesh_history = neighbors_.mesh_tangential_history_m.data();
-  const MeshWall* meshes = walls.meshes.data();
-  const WallPrimitive* __restrict primitives = walls.primitives.data();
   const WallBody* __restrict bodies = walls.bodies.data();
   const std::uint32_t* __restrict owner_offset = neighbors_.owner_offset.data();
   const std::uint32_t* __restrict owner_entry = neighbors_.owner_entry.data();
@@ -683,6 +678,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 #pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
   {
     const int t = omp_get_thread_num();
+    const ContactWalk walk(particles, neighbors_, walls);  // the thread's own: its views stay in registers
     MeshTouchFinder& finder = mesh_scratch_[t].finder;
     std::vector<MeshTouch>& touches = mesh_scratch_[t].touches;
     std::vector<char>& touched = mesh_scratch_[t].touched;
@@ -718,18 +714,18 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         conductivity_i = conductivity[i];
       }
 
-      for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
-        const std::uint32_t j = partner[k];
-        const Vec3 d = x[j] - xi;
-        const double rj = radius[j];
-        const double sum_r = ri + rj;
-        const double dist2 = norm2(d);
-        if (dist2 >= sum_r * sum_r) {
+      for (std::uint32_t k = walk.pairs_begin(i), end_k = walk.pairs_end(i); k < end_k; ++k) {
+        const ContactWalk::ListedPair pair = walk.listed_pair(xi, ri, k);
+        const std::uint32_t j = pair.j;
+        const Vec3& d = pair.d_m;
+        const double rj = pair.radius_j_m;
+        const double sum_r = pair.radius_sum_m;
+        if (pair.apart()) {
           // Most list entries are not touching and already cleared: reading instead of
           // storing keeps their cache lines clean (no write-back).
           if (history[k] != Vec3{}) {
             if constexpr (audit) {  // the spring's energy leaves with it (contact_law.hpp)
-              const double dist = std::sqrt(dist2);
+              const double dist = std::sqrt(pair.distance2_m2);
               spring_source_i -= opened_spring_energy_J(table(mat_i, material[j]), history[k], ri * rj / sum_r,
                                                         sum_r - dist, dot(vi - v[j], d) / dist, dt) / dt;
             }
@@ -739,7 +735,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           continue;
         }
         ++particle_contacts;
-        const double dist = std::sqrt(dist2);
+        const double dist = std::sqrt(pair.distance2_m2);
         const Vec3 normal = d * (1.0 / dist);
         const double overlap = sum_r - dist;
         const double arm_i = ri - 0.5 * overlap, arm_j = rj - 0.5 * overlap;
@@ -762,8 +758,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         const ContactPairParameters& law = table(mat_i, mat_j);
         const ContactForces f = HertzMindlinLaw::evaluate<Audit>(law, c, history[k]);
         if (f.approach_speed_m_per_s > 0.0)
-          impact_i.consider(hertz_impact_key(inv_mi + inv_mass[j], c.effective_radius_m, law.effective_youngs_modulus_Pa,
-                                             f.approach_speed_m_per_s),
+          impact_i.consider(hertz_impact_key(inv_mi + inv_mass[j], c.effective_radius_m,
+                                             law.effective_youngs_modulus_Pa, f.approach_speed_m_per_s),
                             f.approach_speed_m_per_s, -1);
         const Vec3 lever = cross(normal, f.tangential_force_on_i_N);
         force_i += f.force_on_i_N;
@@ -806,10 +802,15 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 
       // One particle-wall contact, analytic or mesh: R* = R_i, m* = m_i (DESIGN.md section 2).
       // node: the wall's thermal node (the body's first, or a segment of it).
-      const auto touch_wall = [&](double distance_m, const Vec3& normal, const Vec3& contact_point_m,
-                                  MaterialIndex wall_material, std::uint32_t body, std::uint32_t node,
-                                  Vec3& wall_spring) {
+      const auto touch_wall = [&](const WallTouch& touch) {
         ++wall_contacts;
+        const double distance_m = touch.distance_m;
+        const Vec3& normal = touch.normal;
+        const Vec3& contact_point_m = touch.contact_point_m;
+        const MaterialIndex wall_material = touch.material;
+        const std::uint32_t body = touch.body;
+        const std::uint32_t node = node_begin[body] + touch.segment;
+        Vec3& wall_spring = touch.on_mesh ? mesh_history[touch.entry] : wall_history[touch.entry];
         const WallMotion& motion = bodies[body].motion;
         const Vec3 wall_omega = motion.active_at(now) ? motion.angular_velocity_rad_per_s : Vec3{};
         const Vec3 surface_velocity = motion.surface_velocity(contact_point_m, now);
@@ -875,62 +876,45 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             cross(contact_point_m - motion.axis_point_m, -f.force_on_i_N) - f.rolling_torque_on_i_N_m;
       };
 
-      for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k) {  // none for a ghost
-        const WallPrimitive& wall = primitives[wall_primitive[k]];
-        const WallProximity prox = closest_wall_point(wall, xi);
-        if (!prox.candidate || prox.distance_m >= ri) {
-          if (wall_history[k] != Vec3{}) {
+      // Analytic walls, then meshes (none for a ghost). A mesh's springs move with its
+      // touches across edges before the touches act (carry_mesh_springs).
+      walk.walls(
+          i, finder, touches, touch_wall,
+          [&](std::uint32_t k, const WallPrimitive& wall, const WallProximity& prox) {
+            if (wall_history[k] == Vec3{}) return;
             if constexpr (audit) {
               if (prox.candidate) {
                 const Vec3 surface = bodies[wall.body].motion.surface_velocity(prox.contact_point_m, now);
                 spring_source_i -= opened_spring_energy_J(table(mat_i, wall.material), wall_history[k], ri,
-                                                          ri - prox.distance_m, dot(vi - surface, prox.normal), dt) / dt;
+                                                          ri - prox.distance_m, dot(vi - surface, prox.normal), dt) /
+                                   dt;
               }
             }
             wall_history[k] = {};
-          }
-          continue;
-        }
-        touch_wall(prox.distance_m, prox.normal, prox.contact_point_m, wall.material, wall.body, node_begin[wall.body],
-                   wall_history[k]);
-      }
-
-      // Mesh walls: the entries of one mesh form a run; its touches are counted once
-      // per face, edge or vertex (MeshTouchFinder). Most particles have none: the test
-      // saves the call (1 % of the pass in a profile).
-      if (neighbors_.mesh_offset[i] != neighbors_.mesh_offset[i + 1]) {  // never for a ghost
-        for_each_mesh_run(neighbors_, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
-          const MeshWall& mesh = meshes[wall_index];
-          finder.find(mesh, bodies[mesh.body].pose, mesh_triangle + g, g_end - g, xi, ri, touches);
-          Vec3* spring = mesh_history + g;
-          const RigidPose& pose = bodies[mesh.body].pose;
-          carry_mesh_springs(mesh.mesh, mesh_triangle + g, g_end - g, touches, spring, touched,
-                             [&]([[maybe_unused]] std::uint32_t e, [[maybe_unused]] const Vec3& cleared_spring) {
-                               if constexpr (audit) {  // what it held leaves with it (as for pairs)
-                                 const auto& corners = mesh.mesh.triangles[mesh_triangle[g + e]];
-                                 const Vec3 point = closest_point_on_triangle(
-                                                        xi, pose.to_world(mesh.mesh.vertices[corners[0]]),
-                                                        pose.to_world(mesh.mesh.vertices[corners[1]]),
-                                                        pose.to_world(mesh.mesh.vertices[corners[2]]))
-                                                        .point_m;
-                                 const double distance = norm(point - xi);
-                                 if (distance > 0.0) {
-                                   const Vec3 surface = bodies[mesh.body].motion.surface_velocity(point, now);
-                                   spring_source_i -=
-                                       opened_spring_energy_J(table(mat_i, mesh.material), cleared_spring, ri,
-                                                              ri - distance, dot(vi - surface, (point - xi) / distance),
-                                                              dt) /
-                                       dt;
+          },
+          [&](const MeshWall& mesh, std::uint32_t g, std::uint32_t count, const std::vector<MeshTouch>& found) {
+            const RigidPose& pose = bodies[mesh.body].pose;
+            carry_mesh_springs(mesh.mesh, mesh_triangle + g, count, found, mesh_history + g, touched,
+                               [&]([[maybe_unused]] std::uint32_t e, [[maybe_unused]] const Vec3& cleared_spring) {
+                                 if constexpr (audit) {  // what it held leaves with it (as for pairs)
+                                   const auto& corners = mesh.mesh.triangles[mesh_triangle[g + e]];
+                                   const Vec3 point = closest_point_on_triangle(
+                                                          xi, pose.to_world(mesh.mesh.vertices[corners[0]]),
+                                                          pose.to_world(mesh.mesh.vertices[corners[1]]),
+                                                          pose.to_world(mesh.mesh.vertices[corners[2]]))
+                                                          .point_m;
+                                   const double distance = norm(point - xi);
+                                   if (distance > 0.0) {
+                                     const Vec3 surface = bodies[mesh.body].motion.surface_velocity(point, now);
+                                     spring_source_i -=
+                                         opened_spring_energy_J(table(mat_i, mesh.material), cleared_spring, ri,
+                                                                ri - distance,
+                                                                dot(vi - surface, (point - xi) / distance), dt) /
+                                         dt;
+                                   }
                                  }
-                               }
-                             });
-          const std::uint16_t* segment = mesh.triangle_segment.empty() ? nullptr : mesh.triangle_segment.data();
-          for (const MeshTouch& touch : touches)
-            touch_wall(touch.distance_m, touch.normal, touch.contact_point_m, mesh.material, mesh.body,
-                       node_begin[mesh.body] + (segment ? segment[mesh_triangle[g + touch.entry]] : 0u),
-                       spring[touch.entry]);
-        });
-      }
+                               });
+          });
       force[i] = force_i;
       torque[i] = torque_i;
       own_spin[i] = own_spin_i;
@@ -1042,13 +1026,14 @@ double Simulation::max_overlap_fraction() const {
   // them directly, so that a packing that starts overlapped says so.
   if (nl.offset.size() != particles.size() + 1)
     return largest_over_ranks(deepest_overlap(particles.position_m, particles.radius_m).fraction);
-  for (std::size_t i = 0; i < particles.size(); ++i)
-    for (std::uint32_t k = is_ghost(i) ? nl.offset[i + 1] : nl.offset[i]; k < nl.offset[i + 1]; ++k) {
-      const std::uint32_t j = nl.partner[k];
-      const double overlap =
-          particles.radius_m[i] + particles.radius_m[j] - norm(particles.position_m[j] - particles.position_m[i]);
-      largest = std::max(largest, overlap / (2.0 * std::min(particles.radius_m[i], particles.radius_m[j])));
-    }
+  const ContactWalk walk(particles, nl, walls);
+  for (std::uint32_t i = 0; i < particles.size(); ++i) {
+    if (is_ghost(i)) continue;  // its own rank has its pairs
+    walk.pairs(i, [&](std::uint32_t, const ContactWalk::ListedPair& pair) {
+      const double overlap = pair.radius_sum_m - std::sqrt(pair.distance2_m2);
+      largest = std::max(largest, overlap / (2.0 * std::min(particles.radius_m[i], pair.radius_j_m)));
+    });
+  }
   return largest_over_ranks(largest);
 }
 

@@ -12,6 +12,7 @@
 #include "contact/hertz_normal.hpp"
 #include "core/error.hpp"
 #include "measure/thermal_history.hpp"
+#include "sim/contact_walk.hpp"
 #include "sim/simulation.hpp"
 #include "thermal/lumped_wall_step.hpp"
 #include "thermal/static_bed_solver.hpp"
@@ -154,47 +155,34 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
       wall_boundary[b] = static_cast<int>(net.boundary_count++);
     }
   }
-  // The same conductances as the coupled contact pass: a = sqrt(R* delta_n).
-  const NeighborList& nl = neighbors_;
+  // The same contacts (ContactWalk) and conductances as the coupled contact pass: a = sqrt(R* delta_n).
+  const ContactWalk walk(particles, neighbors_, walls);
   MeshTouchFinder finder;
   std::vector<MeshTouch> touches;
   for (std::uint32_t i = 0; i < n; ++i) {
     const double ri = particles.radius_m[i];
     const MaterialIndex mi = particles.material[i];
     const double ki = particles.conductivity_W_per_mK[i];
-    for (std::uint32_t k = nl.offset[i]; k < nl.offset[i + 1]; ++k) {
-      const std::uint32_t j = nl.partner[k];
-      const double rj = particles.radius_m[j];
-      const double overlap = ri + rj - norm(particles.position_m[j] - particles.position_m[i]);
-      if (overlap <= 0.0) continue;
-      const double a = HertzNormal::contact_radius_m(ri * rj / (ri + rj), overlap);
+    walk.pairs(i, [&](std::uint32_t, const ContactWalk::ListedPair& pair) {
+      const std::uint32_t j = pair.j;
+      const double a = HertzNormal::contact_radius_m(ri * pair.radius_j_m / pair.radius_sum_m,
+                                                     pair.radius_sum_m - std::sqrt(pair.distance2_m2));
       const ConductionPairParameters& pair_heat = model_.conduction(mi, particles.material[j]);
       const double g = contact_conductance_W_per_K(
           pair_heat, pair_heat.pair_conductivity(ki, particles.conductivity_W_per_mK[j]), a);
       if (g > 0.0) net.edges.push_back({i, j, g});
-    }
-    const auto link_wall = [&](double distance_m, MaterialIndex wall_material, std::uint32_t body) {
-      const WallContactHeat wh = WallContactHeat::of(wall_thermal[body]);
+    });
+    walk.walls(i, finder, touches, [&](const WallTouch& touch) {
+      const WallContactHeat wh = WallContactHeat::of(wall_thermal[touch.body]);
       if (!wh.conducts) return;
-      const double a = HertzNormal::contact_radius_m(ri, ri - distance_m);
+      const double a = HertzNormal::contact_radius_m(ri, ri - touch.distance_m);
       const double g =
-          contact_conductance_W_per_K(model_.conduction(mi, wall_material), wh.contact_conductivity(ki), a);
+          contact_conductance_W_per_K(model_.conduction(mi, touch.material), wh.contact_conductivity(ki), a);
       if (g <= 0.0) return;
-      if (wall_node[body] >= 0)
-        net.edges.push_back({i, static_cast<std::uint32_t>(wall_node[body]), g});
+      if (wall_node[touch.body] >= 0)
+        net.edges.push_back({i, static_cast<std::uint32_t>(wall_node[touch.body]), g});
       else
-        net.boundary_links.push_back({i, static_cast<std::uint32_t>(wall_boundary[body]), g});
-    };
-    for (std::uint32_t k = nl.wall_offset[i]; k < nl.wall_offset[i + 1]; ++k) {
-      const WallPrimitive& wall = walls.primitives[nl.wall_primitive[k]];
-      const WallProximity prox = closest_wall_point(wall, particles.position_m[i]);
-      if (prox.candidate && prox.distance_m < ri) link_wall(prox.distance_m, wall.material, wall.body);
-    }
-    for_each_mesh_run(nl, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
-      const MeshWall& mesh = walls.meshes[wall_index];
-      finder.find(mesh, walls.bodies[mesh.body].pose, nl.mesh_triangle.data() + g, g_end - g,
-                  particles.position_m[i], ri, touches);
-      for (const MeshTouch& touch : touches) link_wall(touch.distance_m, mesh.material, mesh.body);
+        net.boundary_links.push_back({i, static_cast<std::uint32_t>(wall_boundary[touch.body]), g});
     });
   }
   return net;

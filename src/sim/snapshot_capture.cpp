@@ -3,43 +3,26 @@
 #include <algorithm>
 #include <limits>
 
+#include "sim/contact_walk.hpp"
+
 namespace regodem {
 
 std::vector<std::uint32_t> contacts_per_particle(const Simulation& sim) {
   const ParticleStore& p = sim.particles;
-  const NeighborList& list = sim.neighbor_list();
   std::vector<std::uint32_t> count(p.size(), 0);
   // The lists index particles as ordered at the last build; particles appended since
   // come after all of those and are in no list yet.
-  const std::size_t owners = list.offset.empty() ? 0 : std::min(list.offset.size() - 1, p.size());
-  for (std::size_t i = 0; i < owners; ++i)
-    for (std::uint32_t k = list.offset[i]; k < list.offset[i + 1]; ++k) {
-      const std::uint32_t j = list.partner[k];
-      if (j >= p.size()) continue;
-      const double reach = p.radius_m[i] + p.radius_m[j];
-      if (norm2(p.position_m[i] - p.position_m[j]) < reach * reach) {
-        ++count[i];
-        ++count[j];
-      }
-    }
-  const std::size_t wall_owners = list.wall_offset.empty() ? 0 : std::min(list.wall_offset.size() - 1, p.size());
-  for (std::size_t i = 0; i < wall_owners; ++i)
-    for (std::uint32_t k = list.wall_offset[i]; k < list.wall_offset[i + 1]; ++k) {
-      const std::uint32_t w = list.wall_primitive[k];
-      if (w >= sim.walls.primitives.size()) continue;
-      const WallProximity near = closest_wall_point(sim.walls.primitives[w], p.position_m[i]);
-      if (near.candidate && near.distance_m < p.radius_m[i]) ++count[i];
-    }
+  const ContactWalk walk(p, sim.neighbor_list(), sim.walls);
   MeshTouchFinder finder;
   std::vector<MeshTouch> touches;
-  const std::size_t mesh_owners = list.mesh_offset.empty() ? 0 : std::min(list.mesh_offset.size() - 1, p.size());
-  for (std::size_t i = 0; i < mesh_owners; ++i)
-    for_each_mesh_run(list, i, [&](std::uint32_t wall_index, std::uint32_t g, std::uint32_t g_end) {
-      const MeshWall& mesh = sim.walls.meshes[wall_index];
-      finder.find(mesh, sim.walls.bodies[mesh.body].pose, list.mesh_triangle.data() + g, g_end - g, p.position_m[i],
-                  p.radius_m[i], touches);
-      count[i] += static_cast<std::uint32_t>(touches.size());
+  const auto owners = static_cast<std::uint32_t>(std::min(walk.owners(), p.size()));
+  for (std::uint32_t i = 0; i < owners; ++i) {
+    walk.pairs(i, [&](std::uint32_t, const ContactWalk::ListedPair& pair) {
+      ++count[i];
+      ++count[pair.j];
     });
+    walk.walls(i, finder, touches, [&](const WallTouch&) { ++count[i]; });
+  }
   return count;
 }
 

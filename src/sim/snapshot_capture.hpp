@@ -13,7 +13,7 @@
 namespace regodem {
 
 /// Contacts of each particle (touching particles and walls) from the neighbour lists of
-/// the last build: a pass over the pairs the lists hold, done only when a snapshot is
+/// the last build, by the force pass's own walk (ContactWalk): done only when a snapshot is
 /// taken, so the force pass stays as it is. Particles added since the last build have 0.
 std::vector<std::uint32_t> contacts_per_particle(const Simulation& sim);
 

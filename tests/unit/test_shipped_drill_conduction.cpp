@@ -129,3 +129,47 @@ TEST(RealModulusGuard, RefusesAConductingMaterialWithoutARealModulus) {
 
 }  // namespace
 }  // namespace regodem
+
+namespace regodem {
+namespace {
+
+// "Done when the guard refuses the old reduced files" (issue 17): the three reduced drilling
+// files as they were shipped before the fix (c0f5ce3^, kept verbatim in
+// tests/data/pre-issue-17), with one probe grain in place of their bed, are refused, and
+// the message names the steel at its line in the file.
+class PreFixReducedFile : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PreFixReducedFile, IsRefusedForItsSteelWithoutARealModulus) {
+  const fs::path source = fs::path(REGODEM_SOURCE_DIR) / "tests" / "data" / "pre-issue-17" / GetParam();
+  const fs::path csv = fs::temp_directory_path() / ("regodem-prefix-" + std::to_string(::getpid()) + ".csv");
+  {
+    std::ofstream out(csv);
+    out << "x,y,z,radius\n0,0,0.08,0.00075\n";
+  }
+  const std::string text = without_initial_state(read_text(source)) +
+                           "\ninsertions:\n  - {name: probe, material: regolith, file: " + csv.string() +
+                           ", temperature: -196 degC}\n";
+  try {
+    PreparedRun::build(read_scenario_string(text, source.string()), 1);
+    ADD_FAILURE() << GetParam() << ": the old steel was accepted";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(": materials.steel: material 'steel' gives no real modulus, but 'regolith' does"),
+              std::string::npos)
+        << message;
+  }
+  fs::remove(csv);
+}
+
+INSTANTIATE_TEST_SUITE_P(Issue17, PreFixReducedFile,
+                         ::testing::Values("drill-sieve-reduced.yaml", "drill-nosieve-reduced.yaml",
+                                           "drill-single-size-reduced.yaml"),
+                         [](const ::testing::TestParamInfo<const char*>& case_info) {
+                           std::string name = case_info.param;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace regodem

@@ -168,9 +168,9 @@ RunSummary make_summary(const RunEnding& ending, const ScenarioSpec& spec, const
   summary.heat = {heat.enabled,      heat.time_scale_factor, heat.friction_heating, heat.dissipation_heating,
                   to_string(heat.partition), heat.friction_partition};
   const Simulation& sim = prepared.simulation();
-  for (std::size_t b = 0; heat.enabled && b < sim.wall_thermal.size(); ++b) {
-    const ThermalWall& w = sim.wall_thermal[b];
-    if (w.mode == WallThermalMode::lumped)
+  for (std::size_t b = 0; heat.enabled && b < sim.wall_thermal_state.size(); ++b) {
+    const ThermalWallState& w = sim.wall_thermal_state[b];
+    if (sim.model().wall_thermal[b].mode == WallThermalMode::lumped)
       summary.lumped_walls.push_back({sim.walls.bodies[b].name, w.temperature_K, w.peak_temperature_K,
                                       w.segment_temperature_K, w.generated_heat_J, w.heat_to_particles_J,
                                       w.radiated_heat_J, w.held_end_heat_in_J});

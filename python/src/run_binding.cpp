@@ -397,14 +397,15 @@ class PythonRun {
       d["rotation"] = rotation;
       if (wall.fed()) d["depth_m"] = wall.depth_m();
       if (sim.keeps_energy_audit() && b < sim.wall_work_J().size()) d["work_J"] = sim.wall_work_J()[b];
-      if (sim.heat_enabled() && b < sim.wall_thermal.size()) {
-        const ThermalWall& w = sim.wall_thermal[b];
-        d["thermal"] = thermal_mode_name(w.mode);
-        if (w.mode != WallThermalMode::adiabatic) {
+      if (sim.heat_enabled() && b < sim.wall_thermal_state.size()) {
+        const ThermalWallState& w = sim.wall_thermal_state[b];
+        const WallThermalMode mode = sim.model().wall_thermal[b].mode;
+        d["thermal"] = thermal_mode_name(mode);
+        if (mode != WallThermalMode::adiabatic) {
           d["temperature_K"] = w.temperature_K;
           d["heat_to_particles_J"] = w.heat_to_particles_J;
         }
-        if (w.mode == WallThermalMode::lumped) {
+        if (mode == WallThermalMode::lumped) {
           d["peak_temperature_K"] = w.peak_temperature_K;
           d["generated_heat_J"] = w.generated_heat_J;
           if (!w.segment_temperature_K.empty()) d["segment_temperatures_K"] = w.segment_temperature_K;

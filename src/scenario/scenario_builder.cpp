@@ -280,7 +280,7 @@ ThermalWall thermal_wall(const ScenarioSpec& spec, const WallSpec& w, double are
   } catch (const InputError& problem) {
     fail(t.where, problem.what());
   }
-  out.temperature_K = out.prescribed_temperature_K.at(0.0);
+  out.initial_temperature_K = out.prescribed_temperature_K.at(0.0);
   if (out.mode == WallThermalMode::lumped) {
     out.prescribed_temperature_K = TimeTable();  // only the initial value was a table row
     const double mass_kg = t.mass_kg > 0.0 ? t.mass_kg : t.areal_density_kg_per_m2 * area_m2;
@@ -290,7 +290,7 @@ ThermalWall thermal_wall(const ScenarioSpec& spec, const WallSpec& w, double are
                                 w.name));
     out.heat_capacity_J_per_K = mass_kg * t.specific_heat_J_per_kgK;
   }
-  out.conductivity_W_per_mK = wall_conductivity(spec, w, out.temperature_K);
+  out.conductivity_W_per_mK = wall_conductivity(spec, w, out.initial_temperature_K);
   out.mix = t.harmonic_mean ? WallConductivityMix::harmonic_mean : WallConductivityMix::wall;
   out.rod.area_m2 = area_m2;
   out.rod.emissivity = t.emissivity;
@@ -313,7 +313,7 @@ void make_rod(const ScenarioSpec& spec, const WallSpec& w, MeshWall& mesh, Therm
   std::optional<double> k = t.rod_conductivity_W_per_mK;
   if (!k) {
     for (const MaterialSpec& m : spec.materials)
-      if (m.name == w.material && m.conductivity_W_per_mK) k = curve_of(*m.conductivity_W_per_mK).at(out.temperature_K);
+      if (m.name == w.material && m.conductivity_W_per_mK) k = curve_of(*m.conductivity_W_per_mK).at(out.initial_temperature_K);
   }
   if (!k || !(*k > 0.0))
     fail(t.where, fmt::format("wall '{}': its rod conducts along its axis: give `rod: {{conductivity: ...}}` or a "
@@ -332,7 +332,6 @@ void make_rod(const ScenarioSpec& spec, const WallSpec& w, MeshWall& mesh, Therm
     out.rod.segment_heat_capacity_J_per_K.push_back(out.heat_capacity_J_per_K * a / total_area);
     out.rod.segment_area_m2.push_back(a);
   }
-  out.segment_temperature_K.assign(cut.area_m2.size(), out.temperature_K);
   mesh.triangle_segment = std::move(cut.triangle_segment);
 }
 
@@ -382,7 +381,7 @@ std::string describe_thermal_wall(const WallSpec& w, const ThermalWall& t, int s
               ? fmt::format("{:.4g} J/K ({:.4g} J/K with the bottom)", t.heat_capacity_J_per_K, largest_capacity_J_per_K)
               : fmt::format("{:.4g} J/K", t.heat_capacity_J_per_K);
       return fmt::format("{}: lumped, heat capacity m C = {}, initially {:.5g} K; conductivity {}{}{}", who, capacity,
-                         t.temperature_K, k, mix, describe_heat_paths(t));
+                         t.initial_temperature_K, k, mix, describe_heat_paths(t));
     }
   }
   return who;
@@ -1011,7 +1010,7 @@ PreparedRun PreparedRun::build(const ScenarioSpec& spec, int threads) {
     if (stage.freezes_mechanics()) {
       // The frozen network (thermal/thermal_network.hpp) holds one node per lumped wall and
       // no radiation: a drill's own heat paths are stepped with the contacts only.
-      const auto& thermal = impl.simulation->wall_thermal;
+      const auto& thermal = impl.simulation->model().wall_thermal;
       for (std::size_t b = 0; b < thermal.size(); ++b)
         if (thermal[b].mode == WallThermalMode::lumped && thermal[b].rod.exchanges())
           fail(st.where, fmt::format("stage '{}' freezes the bed, but wall '{}' has segments, radiation or a held "

@@ -96,10 +96,10 @@ void carry_mesh_springs(const TriangleMesh& mesh, const std::uint32_t* triangles
 
 Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const SimulationSettings& settings,
                        std::vector<ThermalWall> wall_thermal_in)
-    : walls(std::move(walls_in)),
-      wall_thermal(std::move(wall_thermal_in)),
-      model_(std::move(materials_in), settings) {
+    : walls(std::move(walls_in)), model_(std::move(materials_in), settings) {
   const std::size_t n_bodies = walls.bodies.size();
+  model_.wall_thermal = std::move(wall_thermal_in);
+  std::vector<ThermalWall>& wall_thermal = model_.wall_thermal;
   if (wall_thermal.empty()) wall_thermal.resize(n_bodies);
   if (wall_thermal.size() != n_bodies)
     throw InputError(fmt::format("{} wall thermal descriptions for {} walls", wall_thermal.size(), n_bodies));
@@ -109,17 +109,11 @@ Simulation::Simulation(MaterialTable materials_in, WallSet walls_in, const Simul
   audit_.wall_work_by_body_J.assign(n_bodies, 0.0);
   wall_node_begin_.assign(1, 0);
   for (std::size_t b = 0; b < n_bodies; ++b) {
-    ThermalWall& w = wall_thermal[b];
-    if (w.mode == WallThermalMode::fixed) w.temperature_K = w.prescribed_temperature_K.at(0.0);
-    if (w.mode == WallThermalMode::lumped) {
-      if (w.rod.segmented() && w.segment_temperature_K.size() != w.rod.segment_heat_capacity_J_per_K.size())
-        w.segment_temperature_K.assign(w.rod.segment_heat_capacity_J_per_K.size(), w.temperature_K);
-      w.peak_temperature_K = w.temperature_K;
-      w.refresh_summary_temperature();
-      ledger_.reference_energy_J += w.stored_heat_J();
-    } else if (w.rod.exchanges() || !w.segment_temperature_K.empty()) {
+    const ThermalWall& w = wall_thermal[b];
+    if (w.mode != WallThermalMode::lumped && w.rod.exchanges())
       throw InputError(fmt::format("wall {}: only a lumped wall has segments, radiation or a held end", b));
-    }
+    wall_thermal_state.push_back(ThermalWallState::start(w));
+    ledger_.reference_energy_J += wall_thermal_state.back().stored_heat_J(w);
     wall_node_begin_.push_back(wall_node_begin_.back() + static_cast<std::uint32_t>(w.node_count()));
   }
   node_heat_in_W_.assign(wall_node_begin_.back(), 0.0);
@@ -655,7 +649,8 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   wall_contact_heat_.resize(n_nodes);
   for (std::size_t b = 0; Heat && b < n_bodies; ++b)
     for (std::uint32_t node = node_begin[b]; node < node_begin[b + 1]; ++node)
-      wall_contact_heat_[node] = WallContactHeat::of(wall_thermal[b], node - node_begin[b]);
+      wall_contact_heat_[node] =
+          WallContactHeat::of(model_.wall_thermal[b], wall_thermal_state[b], node - node_begin[b]);
   const WallContactHeat* wall_heat = wall_contact_heat_.data();
 
   // Under MPI a ghost owner's contacts count only for its partners of this rank: its
@@ -981,7 +976,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
         conduction_W += node_sum.conduction_W;
         generated_W += node_sum.generated_heat_W;
       }
-      wall_thermal[b].heat_flow_to_particles_W = -conduction_W;
+      wall_thermal_state[b].heat_flow_to_particles_W = -conduction_W;
       wall_generated_heat_W_[b] = generated_W;
     }
   }

@@ -248,7 +248,9 @@ class Simulation {
 
   ParticleStore particles;
   WallSet walls;
-  std::vector<ThermalWall> wall_thermal;  // index for index with walls.bodies
+  // Each wall body's temperatures and heat books, index for index with walls.bodies (what
+  // each is thermally: model().wall_thermal).
+  std::vector<ThermalWallState> wall_thermal_state;
 
  private:
   void ensure_forces();

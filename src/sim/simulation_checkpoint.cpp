@@ -341,9 +341,10 @@ void Simulation::save_state(Checkpoint& checkpoint) const {
   }
   {
     ByteWriter w;
-    w.put(static_cast<std::uint64_t>(wall_thermal.size()));
-    for (const ThermalWall& t : wall_thermal) {
-      w.put(static_cast<std::uint8_t>(t.mode));
+    w.put(static_cast<std::uint64_t>(wall_thermal_state.size()));
+    for (std::size_t b = 0; b < wall_thermal_state.size(); ++b) {
+      const ThermalWallState& t = wall_thermal_state[b];
+      w.put(static_cast<std::uint8_t>(model_.wall_thermal[b].mode));
       w.put(t.temperature_K);
       w.put(t.heat_flow_to_particles_W);
       w.put(t.heat_to_particles_J);
@@ -467,9 +468,12 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
   {
     ByteReader r = checkpoint.reader(kWallHeat, kWallHeatVersion);
     const std::uint32_t version = section_version(checkpoint, kWallHeat);
-    if (r.get<std::uint64_t>() != wall_thermal.size()) r.fail("has another number of thermal walls than the scenario");
-    for (ThermalWall& t : wall_thermal) {
-      if (r.get<std::uint8_t>() != static_cast<std::uint8_t>(t.mode)) r.fail("has a wall of another thermal mode");
+    if (r.get<std::uint64_t>() != wall_thermal_state.size())
+      r.fail("has another number of thermal walls than the scenario");
+    for (std::size_t b = 0; b < wall_thermal_state.size(); ++b) {
+      const ThermalWall& wall = model_.wall_thermal[b];
+      ThermalWallState& t = wall_thermal_state[b];
+      if (r.get<std::uint8_t>() != static_cast<std::uint8_t>(wall.mode)) r.fail("has a wall of another thermal mode");
       r.get(t.temperature_K);
       r.get(t.heat_flow_to_particles_W);
       r.get(t.heat_to_particles_J);
@@ -482,7 +486,7 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
         r.get_vector(t.segment_temperature_K);
         if (t.segment_temperature_K.size() != segments) r.fail("has a wall of another number of thermal segments");
       } else {
-        if (t.rod.segmented()) r.fail("is from before segmented walls (WTHM version 1): start the run again");
+        if (wall.rod.segmented()) r.fail("is from before segmented walls (WTHM version 1): start the run again");
         t.peak_temperature_K = t.temperature_K;
       }
     }
@@ -491,8 +495,9 @@ void Simulation::restore_state(const Checkpoint& checkpoint) {
       if (node_heat_in_W_.size() != wall_node_begin_.back()) r.fail("has another number of wall thermal nodes");
     } else {
       // One node per wall: what its contacts put in, from the wall's sums.
-      for (std::size_t b = 0; b < wall_thermal.size(); ++b)
-        node_heat_in_W_[wall_node_begin_[b]] = -wall_thermal[b].heat_flow_to_particles_W + wall_generated_heat_W_[b];
+      for (std::size_t b = 0; b < wall_thermal_state.size(); ++b)
+        node_heat_in_W_[wall_node_begin_[b]] =
+            -wall_thermal_state[b].heat_flow_to_particles_W + wall_generated_heat_W_[b];
     }
   }
   {

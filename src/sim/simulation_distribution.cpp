@@ -266,7 +266,7 @@ void Simulation::sum_totals_over_ranks() {
   }
   for (const std::vector<double>* values : {&wall_power_W_, &wall_generated_heat_W_, &node_heat_in_W_})
     for (const double value : *values) pack(value);
-  for (const ThermalWall& wall : wall_thermal) pack(wall.heat_flow_to_particles_W);
+  for (const ThermalWallState& wall : wall_thermal_state) pack(wall.heat_flow_to_particles_W);
   for (const double value : {generated_heat_W_, dissipated_power_W_, contact_elastic_energy_J_, spring_source_W_,
                              static_cast<double>(stats_.particle_contacts), static_cast<double>(stats_.wall_contacts)})
     pack(value);
@@ -283,7 +283,7 @@ void Simulation::sum_totals_over_ranks() {
     }
   for (std::vector<double>* values : {&wall_power_W_, &wall_generated_heat_W_, &node_heat_in_W_})
     for (double& value : *values) value = take();
-  for (ThermalWall& wall : wall_thermal) wall.heat_flow_to_particles_W = take();
+  for (ThermalWallState& wall : wall_thermal_state) wall.heat_flow_to_particles_W = take();
   for (double* value : {&generated_heat_W_, &dissipated_power_W_, &contact_elastic_energy_J_, &spring_source_W_})
     *value = take();
   // Counts below 2^53 are exact as doubles.

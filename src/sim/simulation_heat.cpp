@@ -29,7 +29,8 @@ double Simulation::thermal_energy_J() const {
   for (std::size_t i = 0; i < particles.size(); ++i)
     if (!is_ghost(i)) own += particle_thermal_energy_J(i);
   double sum = total_over_ranks(own);
-  for (const ThermalWall& w : wall_thermal) sum += w.stored_heat_J();  // the same on every rank
+  for (std::size_t b = 0; b < wall_thermal_state.size(); ++b)  // the same on every rank
+    sum += wall_thermal_state[b].stored_heat_J(model_.wall_thermal[b]);
   return sum;
 }
 
@@ -105,31 +106,32 @@ void Simulation::update_temperatures(double dt_s) {
     if (track) record_thermal_history(old_K, temperature[i], dt_s, threshold_K, peak[i], time_above[i]);
   }
 
-  for (std::size_t b = 0; b < wall_thermal.size(); ++b) {
-    ThermalWall& w = wall_thermal[b];
+  for (std::size_t b = 0; b < wall_thermal_state.size(); ++b) {
+    const ThermalWall& wall = model_.wall_thermal[b];
+    ThermalWallState& w = wall_thermal_state[b];
     const double generated_W = wall_generated_heat_W_[b];
     const double into_wall_W = -w.heat_flow_to_particles_W + generated_W;
     w.heat_to_particles_J += w.heat_flow_to_particles_W * dt_s;
     w.generated_heat_J += generated_W * dt_s;
-    switch (w.mode) {
+    switch (wall.mode) {
       case WallThermalMode::adiabatic: break;
       case WallThermalMode::lumped: {
         // Its nodes take their contacts' heat, and the rod's own exchanges (lumped_wall_step.hpp).
         const std::span<const double> contact_heat_W(node_heat_in_W_.data() + wall_node_begin_[b],
                                                      wall_node_begin_[b + 1] - wall_node_begin_[b]);
         const WallBoundaryHeat out =
-            step_lumped_wall(w.node_temperatures_K(), w.node_heat_capacities_J_per_K(), w.node_areas_m2(),
-                             contact_heat_W, w.rod, dt_s, model_.settings.heat.time_scale_factor);
+            step_lumped_wall(w.node_temperatures_K(), wall.node_heat_capacities_J_per_K(), wall.node_areas_m2(),
+                             contact_heat_W, wall.rod, dt_s, model_.settings.heat.time_scale_factor);
         w.radiated_heat_J += out.radiated_J;
         w.held_end_heat_in_J += out.held_end_in_J;
         ledger_.boundary_heat_in_J += out.held_end_in_J - out.radiated_J;
-        w.refresh_summary_temperature();
+        w.refresh_summary_temperature(wall);
         break;
       }
       case WallThermalMode::fixed:
         // Heat a fixed wall takes leaves the system (the wall is a reservoir).
         ledger_.boundary_heat_in_J -= into_wall_W * dt_s;
-        w.temperature_K = w.prescribed_temperature_K.at(time_s_);
+        w.temperature_K = wall.prescribed_temperature_K.at(time_s_);
         break;
     }
   }
@@ -145,6 +147,7 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
     net.heat_capacity_J_per_K[i] =
         particles.mass_kg[i] *
         model_.materials[particles.material[i]].specific_heat_J_per_kgK.at(particles.temperature_K[i]);
+  const std::vector<ThermalWall>& wall_thermal = model_.wall_thermal;
   wall_node.assign(wall_thermal.size(), -1);
   wall_boundary.assign(wall_thermal.size(), -1);
   for (std::size_t b = 0; b < wall_thermal.size(); ++b) {
@@ -173,7 +176,7 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
       if (g > 0.0) net.edges.push_back({i, j, g});
     });
     walk.walls(i, finder, touches, [&](const WallTouch& touch) {
-      const WallContactHeat wh = WallContactHeat::of(wall_thermal[touch.body]);
+      const WallContactHeat wh = WallContactHeat::of(wall_thermal[touch.body], wall_thermal_state[touch.body]);
       if (!wh.conducts) return;
       const double a = HertzNormal::contact_radius_m(ri, ri - touch.distance_m);
       const double g =
@@ -220,14 +223,15 @@ double Simulation::thermal_stability_limit_s() {
 
 void Simulation::advance_frozen(double dt_s, const std::vector<double>& boundary_heat_in_by_body_J) {
   time_s_ += dt_s;
-  for (std::size_t b = 0; b < wall_thermal.size(); ++b) {
-    ThermalWall& w = wall_thermal[b];
-    if (w.mode != WallThermalMode::fixed) continue;
+  for (std::size_t b = 0; b < wall_thermal_state.size(); ++b) {
+    const ThermalWall& wall = model_.wall_thermal[b];
+    if (wall.mode != WallThermalMode::fixed) continue;
+    ThermalWallState& w = wall_thermal_state[b];
     const double heat_J = b < boundary_heat_in_by_body_J.size() ? boundary_heat_in_by_body_J[b] : 0.0;
     ledger_.boundary_heat_in_J += heat_J;
     w.heat_to_particles_J += heat_J;
     w.heat_flow_to_particles_W = heat_J / dt_s;
-    w.temperature_K = w.prescribed_temperature_K.at(time_s_);
+    w.temperature_K = wall.prescribed_temperature_K.at(time_s_);
   }
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // The model of a run (issue 18; MuJoCo's mjModel is the pattern): what does not change
 // while it steps. The settings, the materials and the per-pair tables derived from them
-// (contact law, conduction), the per-material thermal caches and the bond kinds. The
+// (contact law, conduction), the per-material thermal caches, the bond kinds and the walls'
+// thermal descriptions. The
 // Simulation holds one and reads it in every pass; the state (particles, walls' poses and
 // temperatures, lists, bonds, books, clock) is what a checkpoint saves.
 #include <vector>
@@ -12,6 +13,7 @@
 #include "core/vec3.hpp"
 #include "thermal/conduction_parameters.hpp"
 #include "thermal/heat_partition.hpp"
+#include "thermal/thermal_wall.hpp"
 
 namespace regodem {
 
@@ -82,6 +84,9 @@ struct SimulationModel {
   // kind that bonds them or -1 (Simulation::configure_bonds).
   std::vector<BondParameters> bond_kinds;
   std::vector<int> bond_kind_of_pair;
+  // What each wall body is thermally, index for index with the bodies (its temperatures
+  // are state: Simulation::wall_thermal_state).
+  std::vector<ThermalWall> wall_thermal;
 
   /// Throws InputError for settings no run can take (a neighbour skin of 0).
   SimulationModel(MaterialTable materials, const SimulationSettings& settings);

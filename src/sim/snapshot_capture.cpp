@@ -78,9 +78,10 @@ WallSnapshot SimulationSnapshotWriter::wall_snapshot(const Simulation& sim) {
   }
   if (sim.heat_enabled()) {
     for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b) {
-      const ThermalWall* w = b < sim.wall_thermal.size() ? &sim.wall_thermal[b] : nullptr;
+      const ThermalWall* w = b < sim.model().wall_thermal.size() ? &sim.model().wall_thermal[b] : nullptr;
       const bool adiabatic = w == nullptr || w->mode == WallThermalMode::adiabatic;
-      s.body_temperature_K.push_back(adiabatic ? std::numeric_limits<double>::quiet_NaN() : w->temperature_K);
+      s.body_temperature_K.push_back(adiabatic ? std::numeric_limits<double>::quiet_NaN()
+                                               : sim.wall_thermal_state[b].temperature_K);
       s.body_thermal_mode.push_back(w == nullptr ? 0 : static_cast<std::uint8_t>(w->mode));
     }
   }

@@ -179,17 +179,17 @@ std::vector<SeriesColumn> time_series_columns(const Simulation& sim) {
   const std::vector<SeriesColumn> history = thermal_history_columns(sim);
   columns.insert(columns.end(), history.begin(), history.end());
   for (std::size_t b = 0; b < sim.walls.bodies.size(); ++b)
-    if (conducting_wall(sim.wall_thermal[b])) {
+    if (conducting_wall(sim.model().wall_thermal[b])) {
       columns.push_back({sim.walls.bodies[b].name + ".temperature", "K"});
       columns.push_back({sim.walls.bodies[b].name + ".heat_flow", "W"});  // into the particles
       columns.push_back({sim.walls.bodies[b].name + ".heat_flow_real", "W"});  // the same in real time (/ S)
       columns.push_back({sim.walls.bodies[b].name + ".heat_to_particles", "J"});  // cumulative
       // A drill as a thermal body (docs/drilling-heat.md): its hottest node so far, each
       // segment, and what its own heat paths took (cumulative).
-      const ThermalWall& w = sim.wall_thermal[b];
+      const ThermalWall& w = sim.model().wall_thermal[b];
       if (w.mode != WallThermalMode::lumped || !w.rod.exchanges()) continue;
       columns.push_back({sim.walls.bodies[b].name + ".peak_temperature", "K"});
-      for (std::size_t s = 0; s < w.segment_temperature_K.size(); ++s)
+      for (std::size_t s = 0; s < sim.wall_thermal_state[b].segment_temperature_K.size(); ++s)
         columns.push_back({fmt::format("{}[{}].temperature", sim.walls.bodies[b].name, s + 1), "K"});
       if (w.rod.emissivity > 0.0) columns.push_back({sim.walls.bodies[b].name + ".radiated_heat", "J"});
       if (w.rod.held_end_K) columns.push_back({sim.walls.bodies[b].name + ".held_end_heat", "J"});  // in
@@ -256,16 +256,18 @@ std::vector<double> time_series_row(const Simulation& sim, std::size_t stage_ind
                          energy != 0.0 ? imbalance / std::abs(energy) : 0.0});
   const std::vector<double> history = thermal_history_row(sim);
   row.insert(row.end(), history.begin(), history.end());
-  for (const ThermalWall& w : sim.wall_thermal)
-    if (conducting_wall(w)) {
-      row.insert(row.end(), {w.temperature_K, w.heat_flow_to_particles_W, scale.real_rate(w.heat_flow_to_particles_W),
-                             w.heat_to_particles_J});
-      if (w.mode != WallThermalMode::lumped || !w.rod.exchanges()) continue;
-      row.push_back(w.peak_temperature_K);
-      row.insert(row.end(), w.segment_temperature_K.begin(), w.segment_temperature_K.end());
-      if (w.rod.emissivity > 0.0) row.push_back(w.radiated_heat_J);
-      if (w.rod.held_end_K) row.push_back(w.held_end_heat_in_J);
-    }
+  for (std::size_t b = 0; b < sim.wall_thermal_state.size(); ++b) {
+    const ThermalWall& wall = sim.model().wall_thermal[b];
+    const ThermalWallState& w = sim.wall_thermal_state[b];
+    if (!conducting_wall(wall)) continue;
+    row.insert(row.end(), {w.temperature_K, w.heat_flow_to_particles_W, scale.real_rate(w.heat_flow_to_particles_W),
+                           w.heat_to_particles_J});
+    if (wall.mode != WallThermalMode::lumped || !wall.rod.exchanges()) continue;
+    row.push_back(w.peak_temperature_K);
+    row.insert(row.end(), w.segment_temperature_K.begin(), w.segment_temperature_K.end());
+    if (wall.rod.emissivity > 0.0) row.push_back(w.radiated_heat_J);
+    if (wall.rod.held_end_K) row.push_back(w.held_end_heat_in_J);
+  }
   return row;
 }
 

@@ -72,14 +72,16 @@ void StaticHeatStepper::add_energy_to_enthalpy() {
 
 void StaticHeatStepper::advance(double dt_s) {
   const std::size_t n = sim_.particles.size();
-  const std::size_t n_bodies = sim_.wall_thermal.size();
+  const std::vector<ThermalWall>& walls = sim_.model().wall_thermal;
+  const std::size_t n_bodies = walls.size();
   node_temperature_K_.assign(sim_.particles.temperature_K.begin(), sim_.particles.temperature_K.end());
   node_temperature_K_.resize(solver_.network().node_count());
   boundary_start_K_.assign(solver_.network().boundary_count, 0.0);
   boundary_end_K_.assign(solver_.network().boundary_count, 0.0);
   for (std::size_t b = 0; b < n_bodies; ++b) {
-    const ThermalWall& w = sim_.wall_thermal[b];
-    if (wall_node_[b] >= 0) node_temperature_K_[static_cast<std::size_t>(wall_node_[b])] = w.temperature_K;
+    const ThermalWall& w = walls[b];
+    if (wall_node_[b] >= 0)
+      node_temperature_K_[static_cast<std::size_t>(wall_node_[b])] = sim_.wall_thermal_state[b].temperature_K;
     if (wall_boundary_[b] >= 0) {
       boundary_start_K_[static_cast<std::size_t>(wall_boundary_[b])] = w.prescribed_temperature_K.at(sim_.time_s());
       boundary_end_K_[static_cast<std::size_t>(wall_boundary_[b])] =
@@ -99,10 +101,10 @@ void StaticHeatStepper::advance(double dt_s) {
             sim_.particles.temperature_K.begin());
   boundary_heat_by_body_J_.assign(n_bodies, 0.0);
   for (std::size_t b = 0; b < n_bodies; ++b) {
-    ThermalWall& w = sim_.wall_thermal[b];
+    ThermalWallState& w = sim_.wall_thermal_state[b];
     if (wall_node_[b] >= 0) {
       const double new_temperature = node_temperature_K_[static_cast<std::size_t>(wall_node_[b])];
-      w.heat_flow_to_particles_W = -w.heat_capacity_J_per_K * (new_temperature - w.temperature_K) / dt_s;
+      w.heat_flow_to_particles_W = -walls[b].heat_capacity_J_per_K * (new_temperature - w.temperature_K) / dt_s;
       w.heat_to_particles_J += w.heat_flow_to_particles_W * dt_s;
       w.temperature_K = new_temperature;
     }

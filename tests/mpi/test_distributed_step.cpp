@@ -56,7 +56,7 @@ Simulation falling_cup(SphereMaterial& m, Cup kind = Cup::held_at_400K) {
   cup.prescribed_temperature_K = TimeTable(400.0);
   if (kind == Cup::lumped) {  // starts at 400 K and cools as the grains take its heat
     cup.mode = WallThermalMode::lumped;
-    cup.temperature_K = 400.0;
+    cup.initial_temperature_K = 400.0;
     cup.heat_capacity_J_per_K = 0.01;
   }
   Simulation sim(one_material(m), walls, settings, {cup});
@@ -175,8 +175,8 @@ TEST(DistributedStep, TotalsAreSummedOverRanksAndALumpedCupCoolsAsInOneProcess) 
   SplitRun split(falling_cup(m, Cup::lumped), settle, steps);
   const Simulation& sim = split.sim;
 
-  const ThermalWall& cup = sim.wall_thermal[0];
-  const ThermalWall& one_cup = one.sim.wall_thermal[0];
+  const ThermalWallState& cup = sim.wall_thermal_state[0];
+  const ThermalWallState& one_cup = one.sim.wall_thermal_state[0];
   EXPECT_LT(one_cup.temperature_K, 400.0 - 1e-3) << "the cup gave no heat: the test tests less";
   EXPECT_NEAR(cup.temperature_K, one_cup.temperature_K, 1e-9 * 400.0);
   EXPECT_NEAR(cup.heat_flow_to_particles_W, one_cup.heat_flow_to_particles_W,

@@ -51,7 +51,7 @@ inline Simulation make_drilling_bed(const DrillingBedOptions& options = {}) {
   settings.heat.partition = options.partition;
   ThermalWall cup, floor, paddle_heat;
   cup.mode = WallThermalMode::lumped;
-  cup.temperature_K = 300.0;
+  cup.initial_temperature_K = 300.0;
   cup.heat_capacity_J_per_K = 0.05;
   floor.mode = WallThermalMode::fixed;
   floor.prescribed_temperature_K = TimeTable({0.0, 0.05}, {400.0, 500.0});
@@ -63,7 +63,7 @@ inline Simulation make_drilling_bed(const DrillingBedOptions& options = {}) {
     mesh.triangle_segment = cut.triangle_segment;
     paddle_heat = ThermalWall{};
     paddle_heat.mode = WallThermalMode::lumped;
-    paddle_heat.temperature_K = 150.0;
+    paddle_heat.initial_temperature_K = 150.0;
     paddle_heat.heat_capacity_J_per_K = 0.087;  // 5 x 1.2 x 4 mm of steel, c = 460 J/(kg K)
     for (double a : cut.area_m2) {
       paddle_heat.rod.segment_heat_capacity_J_per_K.push_back(0.087 * a / mesh.mesh.area());

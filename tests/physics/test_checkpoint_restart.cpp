@@ -53,12 +53,12 @@ void expect_identical(const Simulation& a, const Simulation& b) {
   for (std::size_t k = 0; k < na.mesh_tangential_history_m.size(); ++k)
     ASSERT_EQ(na.mesh_tangential_history_m[k], nb.mesh_tangential_history_m[k]) << "mesh entry " << k;
   EXPECT_EQ(na.rebuild_count(), nb.rebuild_count());
-  for (std::size_t w = 0; w < a.wall_thermal.size(); ++w) {
-    EXPECT_EQ(a.wall_thermal[w].temperature_K, b.wall_thermal[w].temperature_K) << w;
-    EXPECT_EQ(a.wall_thermal[w].heat_to_particles_J, b.wall_thermal[w].heat_to_particles_J) << w;
-    EXPECT_EQ(a.wall_thermal[w].segment_temperature_K, b.wall_thermal[w].segment_temperature_K) << w;
-    EXPECT_EQ(a.wall_thermal[w].radiated_heat_J, b.wall_thermal[w].radiated_heat_J) << w;
-    EXPECT_EQ(a.wall_thermal[w].held_end_heat_in_J, b.wall_thermal[w].held_end_heat_in_J) << w;
+  for (std::size_t w = 0; w < a.wall_thermal_state.size(); ++w) {
+    EXPECT_EQ(a.wall_thermal_state[w].temperature_K, b.wall_thermal_state[w].temperature_K) << w;
+    EXPECT_EQ(a.wall_thermal_state[w].heat_to_particles_J, b.wall_thermal_state[w].heat_to_particles_J) << w;
+    EXPECT_EQ(a.wall_thermal_state[w].segment_temperature_K, b.wall_thermal_state[w].segment_temperature_K) << w;
+    EXPECT_EQ(a.wall_thermal_state[w].radiated_heat_J, b.wall_thermal_state[w].radiated_heat_J) << w;
+    EXPECT_EQ(a.wall_thermal_state[w].held_end_heat_in_J, b.wall_thermal_state[w].held_end_heat_in_J) << w;
     EXPECT_EQ(a.walls.bodies[w].pose.translation_m, b.walls.bodies[w].pose.translation_m) << w;
     EXPECT_EQ(a.walls.bodies[w].pose.rotation, b.walls.bodies[w].pose.rotation) << w;
     EXPECT_EQ(a.walls.bodies[w].force_N, b.walls.bodies[w].force_N) << w;
@@ -187,8 +187,8 @@ TEST(ThreadCount, ACheckpointFromTwoThreadsGoesOnBitForBitOnOneAndThree) { expec
 // its held end, go on from a checkpoint as if never stopped.
 TEST(CheckpointRestart, ASegmentedDrillGoesOnBitForBit) {
   const Simulation whole = expect_resumed_alike(make_dissipating_bed, {1});
-  ASSERT_EQ(whole.wall_thermal[2].segment_temperature_K.size(), 4u);
-  EXPECT_NE(whole.wall_thermal[2].segment_temperature_K[0], 150.0);
+  ASSERT_EQ(whole.wall_thermal_state[2].segment_temperature_K.size(), 4u);
+  EXPECT_NE(whole.wall_thermal_state[2].segment_temperature_K[0], 150.0);
 }
 
 TEST(CheckpointRestart, SavingDoesNotDisturbTheRun) {

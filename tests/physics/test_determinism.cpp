@@ -32,7 +32,7 @@ State run_once() {
   settings.heat.friction_heating = true;
   ThermalWall cup;
   cup.mode = WallThermalMode::lumped;
-  cup.temperature_K = 400.0;
+  cup.initial_temperature_K = 400.0;
   cup.heat_capacity_J_per_K = 0.01;
   Simulation sim(one_material(m), walls, settings, {cup});
   Rng rng(17);
@@ -40,7 +40,7 @@ State run_once() {
   sim.advance(8000);
   EXPECT_GT(sim.contact_statistics().particle_contacts, 100u);
   EXPECT_GT(sim.neighbor_list().rebuild_count(), 1u);
-  return {sim.particles.position_m, sim.particles.temperature_K, sim.wall_thermal[0].temperature_K};
+  return {sim.particles.position_m, sim.particles.temperature_K, sim.wall_thermal_state[0].temperature_K};
 }
 
 TEST(Determinism, SameStartAndThreadsGiveIdenticalState) {

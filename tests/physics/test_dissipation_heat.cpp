@@ -46,7 +46,7 @@ Drag drag(HeatPartitionModel partition, double fixed_share, const SphereMaterial
   walls.add_plane(walls.add_body("floor", {}), {0, 0, 0}, {0, 0, 1}, 1);
   ThermalWall floor;
   floor.mode = WallThermalMode::lumped;  // takes its share of the heat; conducts none
-  floor.temperature_K = 1.0;
+  floor.initial_temperature_K = 1.0;
   floor.heat_capacity_J_per_K = 1.0;
   floor.conductivity_W_per_mK = 0.0;  // k_c = 0: no conduction (the partition weighs the material's k)
   SimulationSettings settings = settings_for(kRadius, dt, {}, 0.1);
@@ -72,7 +72,7 @@ Drag drag(HeatPartitionModel partition, double fixed_share, const SphereMaterial
   Drag d;
   d.expected_J = mu * normal_force * speed * t - std::pow(mu * normal_force, 2) / tangential_stiffness;
   d.generated_heat_J = sim.thermal_ledger().generated_heat_J;
-  d.wall_heat_J = sim.wall_thermal[0].generated_heat_J;
+  d.wall_heat_J = sim.wall_thermal_state[0].generated_heat_J;
   d.particle_heat_J = sphere_mass(grain, kRadius) * grain.specific_heat * (sim.particles.temperature_K[0] - 1.0);
   return d;
 }
@@ -152,7 +152,7 @@ ImpactHeat oblique_impact_heat(RollingModel rolling) {
   walls.add_plane(walls.add_body("floor", {}), {0, 0, 0}, {0, 0, 1}, 0);
   ThermalWall floor;
   floor.mode = WallThermalMode::lumped;
-  floor.temperature_K = 1.0;
+  floor.initial_temperature_K = 1.0;
   // C = 1e-9 J/K: the ~1e-8 J it takes raises it by kelvins, so its temperature holds the
   // heat to round-off (on C = 1 J/K the rise, 1e-8 K on 1 K, loses 1e-8 of itself).
   floor.heat_capacity_J_per_K = kFloorCapacity_J_per_K;
@@ -173,7 +173,7 @@ ImpactHeat oblique_impact_heat(RollingModel rolling) {
   EXPECT_EQ(sim.contact_statistics().wall_contacts, 0u);  // it has left the floor
   // The floor's heat is read from its temperature (what its node took).
   return {sim.thermal_ledger().generated_heat_J, sim.energy_audit().dissipated_J,
-          (sim.wall_thermal[0].temperature_K - 1.0) * kFloorCapacity_J_per_K,
+          (sim.wall_thermal_state[0].temperature_K - 1.0) * kFloorCapacity_J_per_K,
           sphere_mass(m, kRadius) * m.specific_heat * (sim.particles.temperature_K[0] - 100.0)};
 }
 
@@ -221,7 +221,7 @@ TEST(DissipationHeat, AWallTakesNothingOfItsGrainsOtherContactsLosses) {
     walls.add_plane(walls.add_body("floor", {}), {0, 0, 0}, {0, 0, 1}, 1);
     ThermalWall floor;
     floor.mode = WallThermalMode::lumped;
-    floor.temperature_K = 1.0;
+    floor.initial_temperature_K = 1.0;
     floor.heat_capacity_J_per_K = 1.0;
     floor.conductivity_W_per_mK = 0.0;
     SimulationSettings settings = settings_for(kRadius, dt, {}, 0.1);
@@ -237,8 +237,8 @@ TEST(DissipationHeat, AWallTakesNothingOfItsGrainsOtherContactsLosses) {
     const double generated_J = sim.thermal_ledger().generated_heat_J;
     ASSERT_GT(generated_J, 0.0);
     EXPECT_NEAR(generated_J / sim.energy_audit().dissipated_J, 1.0, 1e-12);
-    EXPECT_LT(std::abs(sim.wall_thermal[0].generated_heat_J), 1e-12 * generated_J);
-    EXPECT_LT(std::abs(sim.wall_thermal[0].temperature_K - 1.0), 1e-12 * generated_J);  // C = 1 J/K
+    EXPECT_LT(std::abs(sim.wall_thermal_state[0].generated_heat_J), 1e-12 * generated_J);
+    EXPECT_LT(std::abs(sim.wall_thermal_state[0].temperature_K - 1.0), 1e-12 * generated_J);  // C = 1 J/K
   }
 }
 
@@ -385,11 +385,12 @@ TEST(DrillThermalBody, ASegmentedPaddleKeepsItsBooksAndHeatsAtItsTip) {
   EXPECT_GT(sim.form_bonds(0.05), 20u);
   sim.advance(1200);
   EXPECT_LT(std::abs(sim.energy_imbalance_J()) / sim.thermal_energy_J(), 1e-9);
-  const ThermalWall& paddle = sim.wall_thermal[2];
+  const ThermalWallState& paddle = sim.wall_thermal_state[2];
+  const WallRod& rod = sim.model().wall_thermal[2].rod;
   ASSERT_EQ(paddle.segment_temperature_K.size(), 4u);
   double stored_J = 0.0;
   for (std::size_t s = 0; s < 4; ++s)
-    stored_J += paddle.rod.segment_heat_capacity_J_per_K[s] * (paddle.segment_temperature_K[s] - 150.0);
+    stored_J += rod.segment_heat_capacity_J_per_K[s] * (paddle.segment_temperature_K[s] - 150.0);
   const double flows_J = std::abs(paddle.generated_heat_J) + std::abs(paddle.heat_to_particles_J) +
                          std::abs(paddle.held_end_heat_in_J) + std::abs(paddle.radiated_heat_J);
   EXPECT_NEAR(stored_J,

@@ -306,12 +306,12 @@ TEST(HeatConduction, LoadedChainReachesTheSeriesConductanceSteadyState) {
     const double expected = 400.0 - flow / g_wall - k * flow / g_pair;
     EXPECT_NEAR(sim.particles.temperature_K[i], expected, 1e-3 * 300.0) << "sphere " << k;
   }
-  EXPECT_NEAR(sim.wall_thermal[0].heat_flow_to_particles_W / flow, 1.0, 1e-3);
-  EXPECT_NEAR(-sim.wall_thermal[1].heat_flow_to_particles_W / flow, 1.0, 1e-3);
+  EXPECT_NEAR(sim.wall_thermal_state[0].heat_flow_to_particles_W / flow, 1.0, 1e-3);
+  EXPECT_NEAR(-sim.wall_thermal_state[1].heat_flow_to_particles_W / flow, 1.0, 1e-3);
   // What came in through the walls is in the particles (1e-9 of the throughput).
   EXPECT_NEAR(sim.energy_imbalance_J() / (flow * sim.time_s()), 0.0, 1e-9);
   // The walls' running totals add up to the ledger's boundary heat (1e-12 relative).
-  EXPECT_NEAR((sim.wall_thermal[0].heat_to_particles_J + sim.wall_thermal[1].heat_to_particles_J) /
+  EXPECT_NEAR((sim.wall_thermal_state[0].heat_to_particles_J + sim.wall_thermal_state[1].heat_to_particles_J) /
                   sim.thermal_ledger().boundary_heat_in_J,
               1.0, 1e-12);
 }
@@ -344,7 +344,7 @@ TEST(HeatConduction, LumpedWallBetweenTwoParticlesFollowsTheThreeBodySolution) {
   walls.add_plane(walls.add_body("bottom", {}), {0, 0, z_b - radius_b + overlap_b}, {0, 0, 1}, 0);
   ThermalWall sieve;
   sieve.mode = WallThermalMode::lumped;
-  sieve.temperature_K = 100.0;
+  sieve.initial_temperature_K = 100.0;
   sieve.heat_capacity_J_per_K = c_w;
   sieve.conductivity_W_per_mK = lambda_wall;
   Simulation sim(one_material(m), walls, heat_settings(dt, scale), {sieve, ThermalWall{}, ThermalWall{}});
@@ -379,7 +379,7 @@ TEST(HeatConduction, LumpedWallBetweenTwoParticlesFollowsTheThreeBodySolution) {
     const double t_b = sim.particles.temperature_K[a_first ? 1 : 0];
     EXPECT_NEAR(t_a, y[0], 0.005 * 200.0) << "at t = " << check_at;
     EXPECT_NEAR(t_b, y[1], 0.005 * 200.0) << "at t = " << check_at;
-    EXPECT_NEAR(sim.wall_thermal[0].temperature_K, y[2], 0.005 * 200.0) << "at t = " << check_at;
+    EXPECT_NEAR(sim.wall_thermal_state[0].temperature_K, y[2], 0.005 * 200.0) << "at t = " << check_at;
     // Closed system: particles + lumped wall keep their energy to round-off.
     EXPECT_NEAR(sim.energy_imbalance_J() / energy_before, 0.0, 1e-12);
     EXPECT_EQ(sim.contact_statistics().particle_contacts, 0u);
@@ -431,13 +431,13 @@ TEST(HeatConduction, AdiabaticWallPassesNoHeat) {
   WallSet walls;
   walls.add_plane(walls.add_body("floor", {}), {0, 0, 0}, {0, 0, 1}, 0);
   ThermalWall floor;  // adiabatic by default, even with a temperature of its own
-  floor.temperature_K = 900.0;
+  floor.initial_temperature_K = 900.0;
   Simulation sim(one_material(m), walls, heat_settings(dt, 1e6, {0, 0, -9.81}), {floor});
   sim.add_particle(sphere({0, 0, kRadius - overlap}, {}, kRadius, m.density, 123.0));
   sim.advance(500);
   EXPECT_EQ(sim.contact_statistics().wall_contacts, 1u);
   EXPECT_EQ(sim.particles.temperature_K[0], 123.0);
-  EXPECT_EQ(sim.wall_thermal[0].heat_flow_to_particles_W, 0.0);
+  EXPECT_EQ(sim.wall_thermal_state[0].heat_flow_to_particles_W, 0.0);
 }
 
 // A fixed wall follows its time table, linear between rows and held after the last
@@ -452,13 +452,13 @@ TEST(HeatConduction, FixedWallFollowsItsTimeTable) {
   plate.prescribed_temperature_K = TimeTable({0.0, 100.0 * dt, 200.0 * dt}, {100.0, 300.0, 200.0});
   Simulation sim(one_material(m), walls, heat_settings(dt, 1.0), {plate});
   sim.add_particle(sphere({0, 0, 5 * kRadius}, {}, kRadius, m.density, 100.0));
-  EXPECT_NEAR(sim.wall_thermal[0].temperature_K, 100.0, 1e-9);
+  EXPECT_NEAR(sim.wall_thermal_state[0].temperature_K, 100.0, 1e-9);
   sim.advance(50);
-  EXPECT_NEAR(sim.wall_thermal[0].temperature_K, 200.0, 1e-9);
+  EXPECT_NEAR(sim.wall_thermal_state[0].temperature_K, 200.0, 1e-9);
   sim.advance(100);
-  EXPECT_NEAR(sim.wall_thermal[0].temperature_K, 250.0, 1e-9);
+  EXPECT_NEAR(sim.wall_thermal_state[0].temperature_K, 250.0, 1e-9);
   sim.advance(100);
-  EXPECT_NEAR(sim.wall_thermal[0].temperature_K, 200.0, 1e-9);
+  EXPECT_NEAR(sim.wall_thermal_state[0].temperature_K, 200.0, 1e-9);
 }
 
 /// A column of a simple-cubic packing of spheres of radius R under a normal stress: a line
@@ -490,7 +490,7 @@ double column_conductivity(const SphereMaterial& m, double radius, double stress
       if (std::round(sim.particles.position_m[i].x / pitch) == k) return sim.particles.temperature_K[i];
     return std::numeric_limits<double>::quiet_NaN();
   };
-  const double flow_s1 = sim.wall_thermal[0].heat_flow_to_particles_W / scale;
+  const double flow_s1 = sim.wall_thermal_state[0].heat_flow_to_particles_W / scale;
   return flow_s1 * pitch / (4.0 * radius * radius * (inner(2) - inner(3)));
 }
 

@@ -109,7 +109,7 @@ SlideResult slide(WallThermalMode wall_mode, double partition, bool every_loss =
   walls.add_plane(walls.add_body("floor", {}), {0, 0, 0}, {0, 0, 1}, 0);
   ThermalWall floor;
   floor.mode = wall_mode;
-  floor.temperature_K = 200.0;
+  floor.initial_temperature_K = 200.0;
   floor.heat_capacity_J_per_K = 1.0;
   floor.conductivity_W_per_mK = 0.0;  // isolate friction heat from conduction
   SimulationSettings settings = settings_for(radius, dt, {0, 0, -9.81}, 0.1);
@@ -124,7 +124,7 @@ SlideResult slide(WallThermalMode wall_mode, double partition, bool every_loss =
   sim.advance(static_cast<std::uint64_t>(steps));
   const double particle_heat = mass * m.specific_heat * (sim.particles.temperature_K[0] - 200.0);
   return {sim.thermal_ledger().generated_heat_J, mass * v0 * v0 / 7.0, particle_heat,
-          sim.wall_thermal[0].generated_heat_J};
+          sim.wall_thermal_state[0].generated_heat_J};
 }
 
 // Friction heat equals the analytic dissipation within 1 % (the tangential spring's

@@ -209,7 +209,7 @@ TEST(StaticBedHeat, TemperatureDependentSpecificHeatKeepsTheLedgerOnAHeatedBed) 
   const TemperatureCurve c({80.0, 350.0, 1000.0}, {300.0, 900.0, 1000.0});
   ThermalWall box;
   box.mode = WallThermalMode::lumped;
-  box.temperature_K = 77.15;
+  box.initial_temperature_K = 77.15;
   box.heat_capacity_J_per_K = 0.01;  // ~ the bed's m c at 77 K
   for (const HeatStepping method : kStaticMethods) {
     Simulation sim = lattice_bed(4, 4, 8, 1.0, dt, c, box);
@@ -220,9 +220,9 @@ TEST(StaticBedHeat, TemperatureDependentSpecificHeatKeepsTheLedgerOnAHeatedBed) 
     run_static(sim, stepper, 300.0 * stepper.stability_limit_s());
     const double heat_in = sim.thermal_ledger().boundary_heat_in_J;
     std::printf("%s: heat in %.6g J, imbalance %.3g of it; box at %.2f K\n", name_of(method),
-                heat_in, sim.energy_imbalance_J() / heat_in, sim.wall_thermal[1].temperature_K);
+                heat_in, sim.energy_imbalance_J() / heat_in, sim.wall_thermal_state[1].temperature_K);
     EXPECT_GT(heat_in, 0.0);
-    EXPECT_GT(sim.wall_thermal[1].temperature_K, 77.15 + 1.0);  // the lumped walls take part
+    EXPECT_GT(sim.wall_thermal_state[1].temperature_K, 77.15 + 1.0);  // the lumped walls take part
     EXPECT_NEAR(sim.energy_imbalance_J() / heat_in, 0.0, 1e-9) << name_of(method);
   }
 }

@@ -89,7 +89,7 @@ TEST(ThermalHistory, NotTrackedUnlessAsked) {
   SimulationSettings s = sim.settings();
   ASSERT_TRUE(s.heat.track_thermal_history);
   s.heat.track_thermal_history = false;
-  Simulation quiet(sim.model().materials, sim.walls, s, sim.wall_thermal);
+  Simulation quiet(sim.model().materials, sim.walls, s, sim.model().wall_thermal);
   quiet.add_particle(sphere(sim.particles.position_m[0], {}, kRadius, SphereMaterial{}.density, kStart_K));
   for (int k = 0; k < 200; ++k) quiet.step();
   EXPECT_GT(quiet.particles.temperature_K[0], kDefaultThermalThreshold_K);

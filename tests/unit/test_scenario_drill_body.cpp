@@ -38,7 +38,7 @@ TEST(ScenarioDrillBody, ALumpedDrillIsARodOfSegments) {
   const Simulation& sim = run.simulation();
   ASSERT_EQ(sim.walls.meshes.size(), 1u);
   const MeshWall& mesh = sim.walls.meshes[0];
-  const ThermalWall& drill = sim.wall_thermal[mesh.body];
+  const ThermalWall& drill = sim.model().wall_thermal[mesh.body];
   ASSERT_EQ(drill.rod.segment_heat_capacity_J_per_K.size(), 5u);
   const auto& c = drill.rod.segment_heat_capacity_J_per_K;
   EXPECT_NEAR(std::accumulate(c.begin(), c.end(), 0.0), 2e-3 * 460.0, 1e-12);
@@ -51,7 +51,7 @@ TEST(ScenarioDrillBody, ALumpedDrillIsARodOfSegments) {
   EXPECT_DOUBLE_EQ(*drill.rod.held_end_K, 173.15);
   EXPECT_DOUBLE_EQ(drill.rod.emissivity, 0.3);
   EXPECT_DOUBLE_EQ(drill.rod.surroundings_K, 40.0);
-  EXPECT_EQ(drill.segment_temperature_K, std::vector<double>(5, *drill.rod.held_end_K));  // both -100 degC
+  EXPECT_EQ(sim.wall_thermal_state[mesh.body].segment_temperature_K, std::vector<double>(5, *drill.rod.held_end_K));  // both -100 degC
   ASSERT_EQ(mesh.triangle_segment.size(), mesh.mesh.triangle_count());
   std::size_t lowest = 0;
   double lowest_z = 1e9;
@@ -118,7 +118,7 @@ TEST(ScenarioDrillBody, ADrillMayConductWithTheParticlesOwnKWhileItsSteelGivesOn
     const PreparedRun run =
         PreparedRun::build(read_scenario_string(drill_with(own ? ", conductivity: particles" : ""), "drill.yaml"), 1);
     const Simulation& sim = run.simulation();
-    const ThermalWall& drill = sim.wall_thermal[sim.walls.meshes.at(0).body];
+    const ThermalWall& drill = sim.model().wall_thermal[sim.walls.meshes.at(0).body];
     if (own) {
       EXPECT_FALSE(drill.conductivity_W_per_mK.has_value());
     } else {
@@ -156,7 +156,7 @@ TEST(ScenarioDrillBody, APrimitiveWallHasNoRodButMayRadiate) {
   }
   const PreparedRun run = PreparedRun::build(
       read_scenario_string(with_barrel(", radiation: {emissivity: 0.5, surroundings: 30 K}"), "drill.yaml"), 1);
-  const ThermalWall& t = run.simulation().wall_thermal[0];
+  const ThermalWall& t = run.simulation().model().wall_thermal[0];
   EXPECT_DOUBLE_EQ(t.rod.emissivity, 0.5);
   // The barrel's side and its capped bottom: 2 pi r L + pi r^2, r = 8 mm, L = 30 mm.
   EXPECT_NEAR(t.rod.area_m2, 2 * M_PI * 8e-3 * 30e-3 + M_PI * 64e-6, 1e-15);

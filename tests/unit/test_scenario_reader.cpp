@@ -1171,11 +1171,11 @@ TEST(ScenarioBuilderHeat, MapsEverythingOntoTheSimulation) {
 
   // barrel, plate, then the sieve's ten segments, top first.
   ASSERT_EQ(sim.walls.bodies.size(), 12u);
-  ASSERT_EQ(sim.wall_thermal.size(), 12u);
-  EXPECT_EQ(sim.wall_thermal[0].mode, WallThermalMode::adiabatic);
-  const ThermalWall& plate = sim.wall_thermal[1];
+  ASSERT_EQ(sim.wall_thermal_state.size(), 12u);
+  EXPECT_EQ(sim.model().wall_thermal[0].mode, WallThermalMode::adiabatic);
+  const ThermalWall& plate = sim.model().wall_thermal[1];
   EXPECT_EQ(plate.mode, WallThermalMode::fixed);
-  EXPECT_DOUBLE_EQ(plate.temperature_K, 77.15);
+  EXPECT_DOUBLE_EQ(sim.wall_thermal_state[1].temperature_K, 77.15);
   EXPECT_DOUBLE_EQ(plate.prescribed_temperature_K.at(5.0), 0.5 * (77.15 + 973.15));
   EXPECT_DOUBLE_EQ(plate.prescribed_temperature_K.at(100.0), 973.15);
   ASSERT_TRUE(plate.conductivity_W_per_mK.has_value());  // from its material, steel
@@ -1188,9 +1188,9 @@ TEST(ScenarioBuilderHeat, MapsEverythingOntoTheSimulation) {
     SCOPED_TRACE(k);
     const std::uint32_t body = static_cast<std::uint32_t>(1 + k);
     EXPECT_EQ(sim.walls.bodies[body].name, "sieve[" + std::to_string(k) + "]");
-    const ThermalWall& segment = sim.wall_thermal[body];
+    const ThermalWall& segment = sim.model().wall_thermal[body];
     EXPECT_EQ(segment.mode, WallThermalMode::lumped);
-    EXPECT_DOUBLE_EQ(segment.temperature_K, 77.15);
+    EXPECT_DOUBLE_EQ(sim.wall_thermal_state[body].temperature_K, 77.15);
     EXPECT_DOUBLE_EQ(*segment.conductivity_W_per_mK, 100.0);
     EXPECT_EQ(segment.mix, WallConductivityMix::wall);
     // Areal density x area: the shell, and the bottom disk of the lowest segment.
@@ -1245,7 +1245,7 @@ TEST(ScenarioBuilderHeat, OpenSieveHasEdgesAtBothEndsAndAMassPerSegment) {
   ASSERT_EQ(sim.walls.bodies.size(), 4u);
   EXPECT_EQ(sim.walls.bodies[3].name, "sieve[2]");
   for (std::uint32_t body : {2u, 3u}) {
-    EXPECT_DOUBLE_EQ(sim.wall_thermal[body].heat_capacity_J_per_K, 0.003 * 500.0);
+    EXPECT_DOUBLE_EQ(sim.model().wall_thermal[body].heat_capacity_J_per_K, 0.003 * 500.0);
     for (const WallPrimitive& p : sim.walls.primitives) {
       if (p.body != body) continue;
       EXPECT_EQ(p.shape, PrimitiveShape::cylinder);

@@ -13,6 +13,7 @@
 #include <unordered_set>
 
 #include "contact/parallel_bond_batch.hpp"
+#include "sim/contact_walk.hpp"
 #include "core/error.hpp"
 #include "sim/simulation.hpp"
 
@@ -87,21 +88,26 @@ std::size_t Simulation::form_bonds(double gap_fraction, const std::vector<char>&
 
   const std::size_t before = bonds_.size();
   const std::size_t n = particles.size();
+  // The listed pairs as the contact walk reads them (ContactWalk), here those within the gap.
+  const ContactWalk walk(particles, neighbors_, walls);
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!allowed(i)) continue;
-    for (std::uint32_t k = neighbors_.offset[i]; k < neighbors_.offset[i + 1]; ++k) {
-      const std::uint32_t j = neighbors_.partner[k];
+    const Vec3 xi = particles.position_m[i];
+    const double ri = particles.radius_m[i];
+    for (std::uint32_t k = walk.pairs_begin(i); k < walk.pairs_end(i); ++k) {
+      const ContactWalk::ListedPair pair = walk.listed_pair(xi, ri, k);
+      const std::uint32_t j = pair.j;
       if (!allowed(j)) continue;
       const int bond_kind = model_.bond_kind_of_pair[particles.material[i] * n_materials + particles.material[j]];
       if (bond_kind < 0) continue;
-      const double ri = particles.radius_m[i], rj = particles.radius_m[j];
+      const double rj = pair.radius_j_m;
       const double gap = gap_fraction * std::min(ri, rj);
       if (gap > model_.settings.neighbor_skin_m)
         throw SimulationError(fmt::format(
             "the bonding gap {:.4g} m ({} x the radius {:.4g} m) is larger than the neighbour skin {:.4g} m, so "
             "pairs that far apart are not all listed: use a smaller gap or a larger neighbor_skin",
             gap, gap_fraction, std::min(ri, rj), model_.settings.neighbor_skin_m));
-      if (norm(particles.position_m[j] - particles.position_m[i]) > ri + rj + gap) continue;
+      if (std::sqrt(pair.distance2_m2) > pair.radius_sum_m + gap) continue;
       if (!existing.insert(key(particles.id[i], particles.id[j])).second) continue;
       const BondParameters& p = model_.bond_kinds[static_cast<std::size_t>(bond_kind)];
       bonds_.add(particles, i, j, static_cast<std::uint16_t>(bond_kind),

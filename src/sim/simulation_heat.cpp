@@ -181,7 +181,7 @@ ThermalNetwork Simulation::thermal_network(std::vector<int>& wall_node, std::vec
       const double a = HertzNormal::contact_radius_m(ri, ri - touch.distance_m);
       const double g =
           contact_conductance_W_per_K(model_.conduction(mi, touch.material), wh.contact_conductivity(ki), a);
-      if (g <= 0.0) return;
+      if (!(g > 0.0)) return;  // nor a NaN one (a blown-up state)
       if (wall_node[touch.body] >= 0)
         net.edges.push_back({i, static_cast<std::uint32_t>(wall_node[touch.body]), g});
       else

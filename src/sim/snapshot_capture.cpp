@@ -11,8 +11,14 @@ std::vector<std::uint32_t> contacts_per_particle(const Simulation& sim) {
   const ParticleStore& p = sim.particles;
   std::vector<std::uint32_t> count(p.size(), 0);
   // The lists index particles as ordered at the last build; particles appended since
-  // come after all of those and are in no list yet.
-  const ContactWalk walk(p, sim.neighbor_list(), sim.walls);
+  // come after all of those and are in no list yet. Lists that point past the store
+  // (none should: a removal or a gather rebuilds them) are not read.
+  const NeighborList& lists = sim.neighbor_list();
+  const auto past = [](const std::vector<std::uint32_t>& v, std::size_t n) {
+    return std::any_of(v.begin(), v.end(), [n](std::uint32_t k) { return k >= n; });
+  };
+  if (past(lists.partner, p.size()) || past(lists.wall_primitive, sim.walls.primitives.size())) return count;
+  const ContactWalk walk(p, lists, sim.walls);
   MeshTouchFinder finder;
   std::vector<MeshTouch> touches;
   const auto owners = static_cast<std::uint32_t>(std::min(walk.owners(), p.size()));

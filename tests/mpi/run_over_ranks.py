@@ -9,12 +9,14 @@ Bounds, stated before the runs:
   and merged over the ranks (gathered only at every 10th sample, insertion attempts,
   snapshots and stage ends): every particle snapshot (.vtp),
   region table and profile is byte for byte the same, and so is every time-series column
-  but the walls' totals;
+  but the walls' totals and energy_imbalance (below);
 - the walls' forces, torques and heat flows (and the heat they brought in, the ledger's
   boundary_heat_in) and the contacts' totals (stored, dissipated and generated energy,
   the energy audit built on them) are sums over the ranks' contacts, added in rank order
   (Communicator::sum_in_rank_order): they agree within 1e-9 of the column's largest
-  magnitude (one rounding per pass, 1e-16 relative, over < 1e5 passes);
+  magnitude (one rounding per pass, 1e-16 relative, over < 1e5 passes); energy_imbalance,
+  (E - E_0 - heat in - heat made) / |E|, takes its heat in from them, so it agrees within
+  1e-9 of the largest heat in and made, over the smallest |E|;
 - the heat books close within 1e-9 of the heat on every rank count (a gather that lost
   or doubled heat would not);
 - grains that leave the domain (over_ranks_spill.yaml: most of its 160) are removed alike

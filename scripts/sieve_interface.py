@@ -27,8 +27,9 @@ import regodem
 
 def load_particles(scenario, bed):
     scenario = regodem.Scenario(scenario, set=[f"initial_state.checkpoint={os.path.abspath(bed)}"])
-    with regodem.Run(scenario, output=tempfile.mkdtemp(), quiet=True, threads=1) as run:
-        return run.particles()
+    with tempfile.TemporaryDirectory() as output:
+        with regodem.Run(scenario, output=output, overwrite=True, quiet=True, threads=1) as run:
+            return run.particles()
 
 
 def pairs_across(position, radius, height):

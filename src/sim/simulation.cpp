@@ -591,10 +591,16 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const std::uint32_t* __restrict owner_offset = neighbors_.owner_offset.data();
   const std::uint32_t* __restrict owner_entry = neighbors_.owner_entry.data();
   const bool own_spin_rolling = model_.contact.any_own_spin();
-  partner_share_.resize(neighbors_.partner.size());
-  partner_touching_.resize(neighbors_.partner.size());
-  partner_heat_W_.resize(Heat ? neighbors_.partner.size() : 0);
-  partner_own_spin_N_m_.resize(own_spin_rolling ? neighbors_.partner.size() : 0);
+  // On one thread each share goes straight to its partner's sum (PartnerSum); on more, to
+  // the pair's entry, gathered after the barrier. Both add the same terms in owner order.
+  const bool direct = threads == 1;
+  const std::size_t n_entries = direct ? 0 : neighbors_.partner.size();
+  partner_share_.resize(n_entries);
+  partner_touching_.resize(n_entries);
+  partner_heat_W_.resize(Heat ? n_entries : 0);
+  partner_own_spin_N_m_.resize(own_spin_rolling ? n_entries : 0);
+  partner_sum_.resize(direct ? particles.size() : 0);
+  PartnerSum* __restrict partner_sum = partner_sum_.data();
   PartnerShare* __restrict share = partner_share_.data();
   double* __restrict share_heat = partner_heat_W_.data();
   double* __restrict share_own_spin = partner_own_spin_N_m_.data();
@@ -627,7 +633,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   if (weighted) fill_partition_weights();
   particle_lossy_.resize(audit ? particles.size() : 0);
   rolling_wall_power_W_.resize(audit ? particles.size() : 0);
-  partner_lossy_.resize(audit ? neighbors_.partner.size() : 0);
+  partner_lossy_.resize(audit ? n_entries : 0);
+  partner_lossy_sum_.resize(audit && direct ? particles.size() : 0);
+  LossyActions* __restrict lossy_sum = partner_lossy_sum_.data();
   LossyActions* __restrict lossy = particle_lossy_.data();
   double* __restrict rolling_wall_power = rolling_wall_power_W_.data();
   LossyActions* __restrict share_lossy = partner_lossy_.data();
@@ -661,8 +669,9 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   // Pass 1, each thread over its owners: every contact's action on the owner is summed
   // here, its share for the partner written to the pair's entry, and wall sums go to
   // the owner's block. Pass 2, after the barrier: each particle gathers its shares as a
-  // partner, in owner order. Nothing is summed in an order that depends on the thread
-  // count, so neither is the result (docs/architecture.md, "The step and threads").
+  // partner, in owner order (on one thread, summed so in pass 1: PartnerSum). Nothing
+  // is summed in an order that depends on the thread count, so neither is the result
+  // (docs/architecture.md, "The step and threads").
   // The owners go to the threads in chunks of whole blocks as the threads come free (an
   // owner by the drill or a coarse grain costs many times another, more than the lists'
   // estimate of the work tells): a block's sums are still one thread's, in owner order.
@@ -726,7 +735,7 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             }
             history[k] = {};
           }
-          if (touching[k]) touching[k] = 0;
+          if (!direct && touching[k]) touching[k] = 0;
           continue;
         }
         ++particle_contacts;
@@ -769,7 +778,11 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
           lossy_i.rolling_torque_N_m += f.rolling_torque_on_i_N_m;
           lossy_i.lossy_force_N += lossy_force;
           lossy_i.lossy_torque_N_m += lever * arm_i;
-          share_lossy[k] = {-f.rolling_torque_on_i_N_m, -lossy_force, lever * arm_j};
+          const LossyActions lossy_j{-f.rolling_torque_on_i_N_m, -lossy_force, lever * arm_j};
+          if (direct)
+            lossy_sum[j] += lossy_j;
+          else
+            share_lossy[k] = lossy_j;
         }
         const Vec3 torque_j = lever * arm_j - f.rolling_torque_on_i_N_m;
         double heat_j = 0.0;
@@ -788,6 +801,14 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
             heat_i += share_i * generated;
             heat_j += (1.0 - share_i) * generated;
           }
+        }
+        if (direct) {
+          PartnerSum& sum_j = partner_sum[j];
+          sum_j.force_N += -f.force_on_i_N;
+          sum_j.torque_N_m += torque_j;
+          if constexpr (Heat) sum_j.heat_W += heat_j;
+          if (own_spin_rolling) sum_j.own_spin_N_m += f.own_spin_resistance_j_N_m;
+          continue;
         }
         share[k] = {-f.force_on_i_N, torque_j};
         if constexpr (Heat) share_heat[k] = heat_j;
@@ -932,6 +953,19 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (std::uint32_t j = 0; j < n_owners; ++j) {
+      if (direct) {  // made in pass 1: added, then cleared for the next pass
+        PartnerSum& sum_j = partner_sum[j];
+        force[j] += sum_j.force_N;
+        torque[j] += sum_j.torque_N_m;
+        own_spin[j] += sum_j.own_spin_N_m;
+        if constexpr (Heat) heat[j] += sum_j.heat_W;
+        sum_j = PartnerSum{};
+        if constexpr (audit) {
+          lossy[j] += lossy_sum[j];
+          lossy_sum[j] = LossyActions{};
+        }
+        continue;
+      }
       Vec3 force_j, torque_j;
       double heat_j = 0.0, own_spin_j = 0.0;
       LossyActions lossy_j;

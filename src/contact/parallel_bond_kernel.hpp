@@ -103,7 +103,7 @@ struct SeriesRotation {
   V3<T> operator()(const V3<T>& v) const { return v * c + cross(phi, v) * s1 + phi * (dot(phi, v) * c1); }
 };
 template <class T>
-inline SeriesRotation<T> series_rotation(const V3<T>& phi) {
+[[gnu::always_inline]] inline SeriesRotation<T> series_rotation(const V3<T>& phi) {
   const T a2 = dot(phi, phi);
   SeriesRotation<T> r{phi, T{}, T{}, T{}};
   r.s1 = 1.0 - a2 / 6.0 * (1.0 - a2 / 20.0 * (1.0 - a2 / 42.0));
@@ -133,7 +133,7 @@ inline SmallestRotation<T> smallest_rotation(const V3<T>& a, const V3<T>& b) {
 /// The step of a bond (update_bond's steps 1-3; see parallel_bond.hpp for the law),
 /// with `spin` the rotation of the pair's mean spin over the step.
 template <class T, class Spin>
-inline BondStepOutput<T> bond_step(const BondStepInput<T>& in, const Spin& spin, double dt_s) {
+[[gnu::always_inline]] inline BondStepOutput<T> bond_step(const BondStepInput<T>& in, const Spin& spin, double dt_s) {
   BondStepOutput<T> out;
   const V3<T> d = in.position_j - in.position_i;
   const T length = lane_sqrt(dot(d, d)), inv_length = 1.0 / length;
@@ -182,7 +182,7 @@ struct BondForces {
   V3<T> force_on_i, torque_on_i, torque_on_j;
 };
 template <class T>
-inline BondForces<T> bond_forces(const V3<T>& n, T normal_force, const V3<T>& shear_force, T twist,
+[[gnu::always_inline]] inline BondForces<T> bond_forces(const V3<T>& n, T normal_force, const V3<T>& shear_force, T twist,
                                  const V3<T>& bend_moment, T arm_i, T arm_j) {
   BondForces<T> f;
   f.force_on_i = n * normal_force + shear_force;

@@ -131,7 +131,9 @@ inline SmallestRotation<T> smallest_rotation(const V3<T>& a, const V3<T>& b) {
 }
 
 /// The step of a bond (update_bond's steps 1-3; see parallel_bond.hpp for the law),
-/// with `spin` the rotation of the pair's mean spin over the step.
+/// with `spin` the rotation of the pair's mean spin over the step. Always inlined, as are
+/// series_rotation and bond_forces: called out of line, the lanes passed through the stack,
+/// where a wide load of two narrower stores stalled the batch (docs/benchmarks.md).
 template <class T, class Spin>
 [[gnu::always_inline]] inline BondStepOutput<T> bond_step(const BondStepInput<T>& in, const Spin& spin, double dt_s) {
   BondStepOutput<T> out;

@@ -184,8 +184,8 @@ struct BondForces {
   V3<T> force_on_i, torque_on_i, torque_on_j;
 };
 template <class T>
-[[gnu::always_inline]] inline BondForces<T> bond_forces(const V3<T>& n, T normal_force, const V3<T>& shear_force, T twist,
-                                 const V3<T>& bend_moment, T arm_i, T arm_j) {
+[[gnu::always_inline]] inline BondForces<T> bond_forces(const V3<T>& n, T normal_force, const V3<T>& shear_force,
+                                                        T twist, const V3<T>& bend_moment, T arm_i, T arm_j) {
   BondForces<T> f;
   f.force_on_i = n * normal_force + shear_force;
   const V3<T> lever = cross(n, shear_force);

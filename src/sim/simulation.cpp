@@ -953,35 +953,30 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
 #pragma omp barrier
 #pragma omp for schedule(static)
     for (std::uint32_t j = 0; j < n_owners; ++j) {
-      if (direct) {  // made in pass 1: added, then cleared for the next pass
-        PartnerSum& sum_j = partner_sum[j];
-        force[j] += sum_j.force_N;
-        torque[j] += sum_j.torque_N_m;
-        own_spin[j] += sum_j.own_spin_N_m;
-        if constexpr (Heat) heat[j] += sum_j.heat_W;
-        sum_j = PartnerSum{};
+      PartnerSum sum_j;
+      LossyActions lossy_j;
+      if (direct) {  // made in pass 1: taken, and cleared for the next pass
+        sum_j = partner_sum[j];
+        partner_sum[j] = PartnerSum{};
         if constexpr (audit) {
-          lossy[j] += lossy_sum[j];
+          lossy_j = lossy_sum[j];
           lossy_sum[j] = LossyActions{};
         }
-        continue;
+      } else {
+        for (std::uint32_t r = owner_offset[j]; r < owner_offset[j + 1]; ++r) {
+          const std::uint32_t k = owner_entry[r];
+          if (!touching[k]) continue;
+          sum_j.force_N += share[k].force_N;
+          sum_j.torque_N_m += share[k].torque_N_m;
+          if (own_spin_rolling) sum_j.own_spin_N_m += share_own_spin[k];
+          if constexpr (Heat) sum_j.heat_W += share_heat[k];
+          if constexpr (audit) lossy_j += share_lossy[k];
+        }
       }
-      Vec3 force_j, torque_j;
-      double heat_j = 0.0, own_spin_j = 0.0;
-      LossyActions lossy_j;
-      for (std::uint32_t r = owner_offset[j]; r < owner_offset[j + 1]; ++r) {
-        const std::uint32_t k = owner_entry[r];
-        if (!touching[k]) continue;
-        force_j += share[k].force_N;
-        torque_j += share[k].torque_N_m;
-        if (own_spin_rolling) own_spin_j += share_own_spin[k];
-        if constexpr (Heat) heat_j += share_heat[k];
-        if constexpr (audit) lossy_j += share_lossy[k];
-      }
-      force[j] += force_j;
-      torque[j] += torque_j;
-      own_spin[j] += own_spin_j;
-      if constexpr (Heat) heat[j] += heat_j;
+      force[j] += sum_j.force_N;
+      torque[j] += sum_j.torque_N_m;
+      own_spin[j] += sum_j.own_spin_N_m;
+      if constexpr (Heat) heat[j] += sum_j.heat_W;
       if constexpr (audit) lossy[j] += lossy_j;
     }
   }

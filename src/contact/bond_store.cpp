@@ -65,33 +65,45 @@ std::size_t BondStore::refresh_indices(const ParticleStore& particles) {
   return size();
 }
 
-void BondStore::renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count) {
-  for (std::size_t b = 0; b < size(); ++b) {
+void BondStore::renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count, int threads) {
+  const std::size_t nb = size();
+#pragma omp parallel for schedule(static) num_threads(threads) if (nb > 4096)
+  for (std::size_t b = 0; b < nb; ++b) {
     local_i[b] = new_index_of_old[local_i[b]];
     local_j[b] = new_index_of_old[local_j[b]];
   }
   rebuild_per_particle(particle_count);
 }
 
-void BondStore::remove_broken(const ParticleStore& particles) {
-  // The bonds before the first broken one stay where they are.
-  std::size_t kept = 0;
-  while (kept < size() && !broken[kept]) ++kept;
-  for (std::size_t b = kept; b < size(); ++b) {
-    if (broken[b]) continue;
-    id_i[kept] = id_i[b];
-    id_j[kept] = id_j[b];
-    local_i[kept] = local_i[b];
-    local_j[kept] = local_j[b];
-    kind[kept] = kind[b];
-    rest_length_m[kept] = rest_length_m[b];
-    section[kept] = section[b];
-    sequence[kept] = sequence[b];
-    for (std::vector<double>& row : state) row[kept] = row[b];
-    action[kept] = action[b];
-    heat_to_i_W[kept] = heat_to_i_W[b];
-    broken[kept] = 0;
-    ++kept;
+void BondStore::remove_broken(const ParticleStore& particles, int threads) {
+  // The bonds before the first broken one stay where they are; each field is moved up
+  // on its own, the fields shared out over the threads.
+  std::size_t first = 0;
+  while (first < size() && !broken[first]) ++first;
+  std::size_t kept = first;
+  for (std::size_t b = first; b < size(); ++b) kept += broken[b] == 0;
+  const auto compact = [&](auto& field) {
+    std::size_t to = first;
+    for (std::size_t b = first; b < size(); ++b)
+      if (!broken[b]) field[to++] = field[b];
+  };
+  constexpr int kFields = 10;
+  const int jobs = kFields + static_cast<int>(state.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (size() > 4096)
+  for (int job = 0; job < jobs; ++job) {
+    switch (job) {
+      case 0: compact(id_i); break;
+      case 1: compact(id_j); break;
+      case 2: compact(local_i); break;
+      case 3: compact(local_j); break;
+      case 4: compact(kind); break;
+      case 5: compact(rest_length_m); break;
+      case 6: compact(section); break;
+      case 7: compact(sequence); break;
+      case 8: compact(action); break;
+      case 9: compact(heat_to_i_W); break;
+      default: compact(state[static_cast<std::size_t>(job - kFields)]); break;
+    }
   }
   for (auto* field : {&id_i, &id_j}) field->resize(kept);
   for (auto* field : {&local_i, &local_j}) field->resize(kept);
@@ -102,7 +114,7 @@ void BondStore::remove_broken(const ParticleStore& particles) {
   resize_state(kept);
   action.resize(kept);
   heat_to_i_W.resize(kept);
-  broken.resize(kept);
+  broken.assign(kept, 0);
   rebuild_per_particle(particles.size());
 }
 

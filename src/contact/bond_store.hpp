@@ -88,9 +88,9 @@ class BondStore {
   [[nodiscard]] std::size_t refresh_indices(const ParticleStore& particles);
   /// The particles moved: the one at index p is now at new_index_of_old[p] (a sort, a
   /// removal of particles without bonds). Updates the local indices and the CSR.
-  void renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count);
+  void renumber(const std::vector<std::uint32_t>& new_index_of_old, std::size_t particle_count, int threads = 1);
   /// Removes the bonds flagged broken (keeping the order of the rest) and refreshes the CSR.
-  void remove_broken(const ParticleStore& particles);
+  void remove_broken(const ParticleStore& particles, int threads = 1);
   /// Removes the bonds with an end flagged in `removed` (by local index; the particles
   /// are about to be removed), then renumber() for the indices past the removal.
   void remove_with_particles(const ParticleStore& particles, const std::vector<char>& removed);

@@ -33,22 +33,33 @@ void CellGrid::coordinates(const Vec3& x, int& ix, int& iy, int& iz) const {
   iz = clamp_cell(x.z, origin_m.z, nz);
 }
 
-void NeighborList::save_history(const ParticleStore& particles) {
-  saved_.clear();
+void NeighborList::save_history(const ParticleStore& particles, int threads) {
   const std::size_t owners = offset.empty() ? 0 : offset.size() - 1;
   saved_begin_.assign(owners + 1, 0);
   if (mesh_offset.size() != offset.size()) mesh_offset.assign(offset.size(), 0);
+  // Two passes, each owner's count and then its entries, so that the threads fill one
+  // list in owner order.
+  const auto kept = [](const Vec3& history_m) { return norm2(history_m) > 0.0; };
+#pragma omp parallel for schedule(static) num_threads(threads) if (owners > 4096)
   for (std::size_t i = 0; i < owners; ++i) {
+    std::uint32_t count = 0;
+    for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) count += kept(tangential_history_m[k]);
+    for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k) count += kept(wall_tangential_history_m[k]);
+    for (std::uint32_t k = mesh_offset[i]; k < mesh_offset[i + 1]; ++k) count += kept(mesh_tangential_history_m[k]);
+    saved_begin_[i + 1] = count;
+  }
+  for (std::size_t i = 0; i < owners; ++i) saved_begin_[i + 1] += saved_begin_[i];
+  saved_.resize(saved_begin_[owners]);
+#pragma omp parallel for schedule(static) num_threads(threads) if (owners > 4096)
+  for (std::size_t i = 0; i < owners; ++i) {
+    SavedContact* out = saved_.data() + saved_begin_[i];
     for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k)
-      if (norm2(tangential_history_m[k]) > 0.0)
-        saved_.push_back({particles.id[partner[k]], kNoWall, tangential_history_m[k]});
+      if (kept(tangential_history_m[k])) *out++ = {particles.id[partner[k]], kNoWall, tangential_history_m[k]};
     for (std::uint32_t k = wall_offset[i]; k < wall_offset[i + 1]; ++k)
-      if (norm2(wall_tangential_history_m[k]) > 0.0)
-        saved_.push_back({0, wall_primitive[k], wall_tangential_history_m[k]});
+      if (kept(wall_tangential_history_m[k])) *out++ = {0, wall_primitive[k], wall_tangential_history_m[k]};
     for (std::uint32_t k = mesh_offset[i]; k < mesh_offset[i + 1]; ++k)
-      if (norm2(mesh_tangential_history_m[k]) > 0.0)
-        saved_.push_back({mesh_triangle[k], kMeshWall + mesh_wall[k], mesh_tangential_history_m[k]});
-    saved_begin_[i + 1] = static_cast<std::uint32_t>(saved_.size());
+      if (kept(mesh_tangential_history_m[k]))
+        *out++ = {mesh_triangle[k], kMeshWall + mesh_wall[k], mesh_tangential_history_m[k]};
   }
   // Until the particles change, each is its own saved owner (particles inserted since
   // the last build have indices past the saved ones).
@@ -119,7 +130,7 @@ void NeighborList::restore_history(const ParticleStore& particles, int threads) 
 void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const CellGrid& grid,
                            const NeighborSkin& skin, int threads, bool history_saved,
                            std::vector<std::uint8_t>* ghost_flags) {
-  if (!history_saved) save_history(particles);
+  if (!history_saved) save_history(particles, threads);
   const std::size_t n = particles.size();
 
   // Counting sort of the particles by cell: afterwards each cell's particles are the
@@ -127,12 +138,13 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   const std::size_t cells = grid.cell_count();
   cell_of_particle_.resize(n);
   cell_start_.assign(cells + 1, 0);
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) {
     int ix, iy, iz;
     grid.coordinates(particles.position_m[i], ix, iy, iz);
     cell_of_particle_[i] = grid.index(ix, iy, iz);
-    ++cell_start_[cell_of_particle_[i] + 1];
   }
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_particle_[i] + 1];
   for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   {
     std::vector<std::uint32_t>& order = sort_order_;
@@ -148,7 +160,7 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     for (std::size_t a = 1; a < n; ++a)
       for (std::size_t b = a; b > 0 && same_cell(order[b - 1], order[b]) && ids[order[b - 1]] > ids[order[b]]; --b)
         std::swap(order[b - 1], order[b]);
-    particles.permute(order);
+    particles.permute(order, threads);
     if (ghost_flags) {
       std::vector<std::uint8_t> sorted(n);
       for (std::size_t i = 0; i < n; ++i) sorted[i] = (*ghost_flags)[order[i]];
@@ -167,8 +179,9 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   slow_half_skin_m_ = slow_half;
   half_skin_m_.resize(n);
   inverse_half_skin2_.resize(n);
-  std::vector<std::uint32_t> fast;
   double largest_radius = 0.0, largest_fast_half = slow_half;
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096) \
+    reduction(max : largest_radius, largest_fast_half)
   for (std::size_t i = 0; i < n; ++i) {
     // The distance covered in the steps ahead at the build's velocity and acceleration,
     // per step (half_for): (|v| + |a| T / 2) dt.
@@ -181,11 +194,11 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
     half_skin_m_[i] = h;
     inverse_half_skin2_[i] = 1.0 / (h * h);
     largest_radius = std::max(largest_radius, particles.radius_m[i]);
-    if (h > slow_half) {
-      fast.push_back(static_cast<std::uint32_t>(i));
-      largest_fast_half = std::max(largest_fast_half, h);
-    }
+    largest_fast_half = std::max(largest_fast_half, h);
   }
+  std::vector<std::uint32_t> fast;
+  for (std::size_t i = 0; i < n; ++i)
+    if (half_skin_m_[i] > slow_half) fast.push_back(static_cast<std::uint32_t>(i));
   body_half_skin_m_.assign(walls.bodies.size(), slow_half);
   for (std::size_t b = 0; b < walls.bodies.size() && b < skin.body_step_m.size(); ++b)
     body_half_skin_m_[b] = half_for(skin.body_step_m[b]);
@@ -195,6 +208,7 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   const auto& id = particles.id;
   const std::vector<double>& half = half_skin_m_;
   search_point_.resize(n);
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
   for (std::size_t i = 0; i < n; ++i) search_point_[i] = {x[i], radius[i]};
   const SearchPoint* const search_point = search_point_.data();
   // Calls visit_run(begin, end) for each run [begin, end) of particles in a row of cells
@@ -361,6 +375,7 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   wall_primitive.resize(wall_offset[n]);
   mesh_wall.resize(mesh_offset[n]);
   mesh_triangle.resize(mesh_offset[n]);
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
   for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
     const std::size_t begin = chunk * kBuildChunk;
     const ChunkLists& lists = chunk_lists_[chunk];

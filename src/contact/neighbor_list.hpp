@@ -152,7 +152,7 @@ class NeighborList {
   std::uint64_t rebuild_count() const { return rebuilds_; }
   /// Keeps the contact history of every owner, by its index now and its partners' ids
   /// (rebuild() does it itself unless told it was done before the particles changed).
-  void save_history(const ParticleStore& particles);
+  void save_history(const ParticleStore& particles, int threads = 1);
   /// After save_history(): the flagged particles are about to be removed (the rest keep
   /// their order), so the saved owners are found again at their new indices.
   void history_follows_removal(const std::vector<char>& removed);

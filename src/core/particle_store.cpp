@@ -28,10 +28,12 @@ std::size_t ParticleStore::add(const NewParticle& p) {
   return id.size() - 1;
 }
 
-void ParticleStore::permute(const std::vector<std::uint32_t>& order) {
+void ParticleStore::permute(const std::vector<std::uint32_t>& order, int threads) {
+  const std::size_t n = order.size();
   for_each_field([&](auto& field) {
     std::remove_reference_t<decltype(field)> sorted(field.size());
-    for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = field[order[k]];
+#pragma omp parallel for schedule(static) num_threads(threads) if (n > 4096)
+    for (std::size_t k = 0; k < n; ++k) sorted[k] = field[order[k]];
     field.swap(sorted);
   });
 }

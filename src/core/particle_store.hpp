@@ -104,7 +104,7 @@ class ParticleStore {
   /// Appends a solid sphere; returns its local index.
   std::size_t add(const NewParticle& p);
   /// Reorders all fields so that new index k holds old index order[k].
-  void permute(const std::vector<std::uint32_t>& order);
+  void permute(const std::vector<std::uint32_t>& order, int threads = 1);
   /// Removes the particles whose flag is set, keeping the order of the rest.
   void remove_if(const std::vector<char>& remove_flag);
   void reserve(std::size_t n);

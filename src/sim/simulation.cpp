@@ -168,9 +168,11 @@ void Simulation::rebuild_neighbors(bool history_saved) {
   if (halo_) halo_->follow_sort(neighbors_.sort_order());  // the ghost flags followed it in the rebuild
   if (!bonds_.empty()) {  // the rebuild re-sorted the particles
     const std::vector<std::uint32_t>& order = neighbors_.sort_order();
-    std::vector<std::uint32_t> new_index_of_old(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) new_index_of_old[order[i]] = static_cast<std::uint32_t>(i);
-    bonds_.renumber(new_index_of_old, particles.size());
+    const std::size_t n = order.size();
+    std::vector<std::uint32_t> new_index_of_old(n);
+#pragma omp parallel for schedule(static) num_threads(active_threads_) if (n > 4096)
+    for (std::size_t i = 0; i < n; ++i) new_index_of_old[order[i]] = static_cast<std::uint32_t>(i);
+    bonds_.renumber(new_index_of_old, particles.size(), active_threads_);
   }
 }
 

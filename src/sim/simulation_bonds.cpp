@@ -335,7 +335,7 @@ void Simulation::apply_bonds(double dt_s) {
     if (!halo_) (e.mode == BondBreak::tension ? bond_counts_.broken_in_tension : bond_counts_.broken_in_shear)++;
     bond_breaks_.push_back(e);
   }
-  bonds_.remove_broken(particles);
+  bonds_.remove_broken(particles, threads);
 }
 
 }  // namespace regodem

@@ -110,6 +110,14 @@ class NeighborList {
   std::vector<std::uint32_t> owner_entry;
   // The force pass's blocks of owners: a block's wall sums are one thread's.
   static constexpr std::uint32_t kOwnerBlock = 64;
+  /// One thread's share of n particles in whole owner blocks, in order (a loop's
+  /// schedule(static, run)): a block's sums stay one thread's, and each thread sums the
+  /// run of particles the integrator's static loops then hand it (the lines stay in its
+  /// cache; blocks dealt out in turn were 3-12 % slower on the drilling window).
+  static std::size_t owner_block_run(std::size_t n, int threads) {
+    const std::size_t blocks = (n + kOwnerBlock - 1) / kOwnerBlock, t = static_cast<std::size_t>(threads < 1 ? 1 : threads);
+    return kOwnerBlock * ((blocks + t - 1) / t);
+  }
 
   /// Sorts the particles by cell, rebuilds both lists and carries the contact history.
   /// history_saved: save_history() was called before the particles changed (removal),

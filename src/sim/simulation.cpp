@@ -268,7 +268,8 @@ void Simulation::book_end_of_step_losses() {
   const double* __restrict own_spin = own_spin_resistance_N_m_.data();
   const Vec3* __restrict own_spin_torque = own_spin_torque_N_m_.data();
   const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
-#pragma omp parallel for schedule(static, block_size) num_threads(active_threads_) if (n > 4096)
+  const std::size_t run = NeighborList::owner_block_run(n, active_threads_);
+#pragma omp parallel for schedule(static, run) num_threads(active_threads_) if (n > 4096)
   for (std::size_t p = 0; p < n; ++p) {
     if (ghost && ghost[p]) continue;  // its own rank books it
     const LossyActions& a = lossy[p];

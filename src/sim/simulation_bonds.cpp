@@ -276,8 +276,9 @@ void Simulation::apply_bonds(double dt_s) {
   constexpr std::uint32_t kGatherAhead = BondStore::kEntryPadding;
   // Under MPI a ghost's bonds are its own rank's to sum (and their losses to book).
   const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
-  // Chunks of one block each: a block's sums are one thread's, in particle order.
-#pragma omp parallel for schedule(static, block_size) num_threads(threads) if (n > 4096)
+  // Each thread one run of whole blocks, the particles it moves next (owner_block_run).
+  const std::size_t run = NeighborList::owner_block_run(n, threads);
+#pragma omp parallel for schedule(static, run) num_threads(threads) if (n > 4096)
   for (std::size_t q = 0; q < n; ++q) {
     if (ghost && ghost[q]) continue;
     Vec3 f, t;

@@ -675,13 +675,21 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   // partner, in owner order (on one thread, summed so in pass 1: PartnerSum). Nothing
   // is summed in an order that depends on the thread count, so neither is the result
   // (docs/architecture.md, "The step and threads").
-  // The owners go to the threads in chunks of whole blocks as the threads come free (an
-  // owner by the drill or a coarse grain costs many times another, more than the lists'
-  // estimate of the work tells): a block's sums are still one thread's, in owner order.
+  // The owners go to the threads in chunks of whole blocks (a block's sums are still one
+  // thread's, in owner order). Each thread first takes, in order, the chunks of its own
+  // run of owners, the particles the integrator's static loops hand it (their lines stay in
+  // its cache), and then the chunks the others have not reached (an owner by the drill or
+  // a coarse grain costs many times another, more than the lists' estimate of the work
+  // tells). On one thread that is every chunk in order, as the direct sums need.
   constexpr std::uint32_t chunk_size = 4 * block_size;
   const std::uint32_t n_owners = static_cast<std::uint32_t>(particles.size());
   const std::uint32_t chunks = (n_owners + chunk_size - 1) / chunk_size;
-  std::atomic<std::uint32_t> next_chunk{0};
+  const std::uint32_t run_chunks = (chunks + static_cast<std::uint32_t>(threads) - 1) / static_cast<std::uint32_t>(threads);
+  struct alignas(64) NextChunk {  // one thread's next chunk of its run, a line each
+    std::atomic<std::uint32_t> chunk{0};
+  };
+  std::vector<NextChunk> next_chunk(static_cast<std::size_t>(threads));
+  for (int u = 0; u < threads; ++u) next_chunk[static_cast<std::size_t>(u)].chunk = static_cast<std::uint32_t>(u) * run_chunks;
 #pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
   {
     const int t = omp_get_thread_num();
@@ -689,10 +697,20 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
     MeshTouchFinder& finder = mesh_scratch_[t].finder;
     std::vector<MeshTouch>& touches = mesh_scratch_[t].touches;
     std::vector<char>& touched = mesh_scratch_[t].touched;
+    int from = t;  // whose run the thread takes chunks from: its own, then the next ones'
 
     for (std::uint32_t i = 0, end = 0;; ++i) {
       if (i == end) {  // the thread's next chunk, its blocks cleared
-        const std::uint32_t chunk = next_chunk.fetch_add(1, std::memory_order_relaxed);
+        std::uint32_t chunk = chunks;
+        for (int tried = 0; tried < threads; ++tried, from = (from + 1) % threads) {
+          const std::uint32_t run_end = std::min(chunks, static_cast<std::uint32_t>(from + 1) * run_chunks);
+          const std::uint32_t next =
+              next_chunk[static_cast<std::size_t>(from)].chunk.fetch_add(1, std::memory_order_relaxed);
+          if (next < run_end) {
+            chunk = next;
+            break;
+          }
+        }
         if (chunk >= chunks) break;
         i = chunk * chunk_size;
         end = std::min(n_owners, i + chunk_size);

@@ -392,6 +392,23 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   ++rebuilds_;
 }
 
+std::vector<std::size_t> NeighborList::owner_block_runs_by_entries(std::size_t n, int threads,
+                                                                  const std::uint32_t* offset) {
+  const std::size_t runs = static_cast<std::size_t>(threads < 1 ? 1 : threads);
+  std::vector<std::size_t> begin(runs + 1, n);
+  begin[0] = 0;
+  constexpr double kPerParticle = 4.0;  // entries' worth of a particle's own loads and stores
+  const auto work_before = [&](std::size_t q) { return kPerParticle * static_cast<double>(q) + offset[q] - offset[0]; };
+  const double total = work_before(n);
+  std::size_t r = 1;
+  for (std::size_t end = kOwnerBlock; r < runs; end += kOwnerBlock) {
+    const std::size_t at = std::min(n, end);
+    while (r < runs && work_before(at) >= total * static_cast<double>(r) / static_cast<double>(runs)) begin[r++] = at;
+    if (at == n) break;
+  }
+  return begin;
+}
+
 void NeighborList::index_partners(std::size_t particle_count) {
   owner_offset.assign(particle_count + 1, 0);
   for (const std::uint32_t j : partner) ++owner_offset[j + 1];

@@ -118,6 +118,11 @@ class NeighborList {
     const std::size_t blocks = (n + kOwnerBlock - 1) / kOwnerBlock, t = static_cast<std::size_t>(threads < 1 ? 1 : threads);
     return kOwnerBlock * ((blocks + t - 1) / t);
   }
+  /// The same runs, one a thread, cut where each holds its share of the work of a loop over
+  /// the particles that reads entries [offset[q], offset[q + 1]) of a CSR for particle q
+  /// (with a few entries' worth per particle besides): run r is [begin[r], begin[r + 1]).
+  static std::vector<std::size_t> owner_block_runs_by_entries(std::size_t n, int threads,
+                                                              const std::uint32_t* offset);
 
   /// Sorts the particles by cell, rebuilds both lists and carries the contact history.
   /// history_saved: save_history() was called before the particles changed (removal),

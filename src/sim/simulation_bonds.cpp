@@ -276,42 +276,52 @@ void Simulation::apply_bonds(double dt_s) {
   constexpr std::uint32_t kGatherAhead = BondStore::kEntryPadding;
   // Under MPI a ghost's bonds are its own rank's to sum (and their losses to book).
   const std::uint8_t* __restrict ghost = ghost_.empty() ? nullptr : ghost_.data();
-  // Each thread one run of whole blocks, the particles it moves next (owner_block_run).
-  const std::size_t run = NeighborList::owner_block_run(n, threads);
-#pragma omp parallel for schedule(static, run) num_threads(threads) if (n > 4096)
-  for (std::size_t q = 0; q < n; ++q) {
-    if (ghost && ghost[q]) continue;
-    Vec3 f, t;
-    double h = 0.0, loss = 0.0, generated = 0.0;
-    // The actions of the entries a few ahead are asked for early (a bond's j end reads
-    // an action far from its neighbours'); the entry list has padding for this.
-    for (std::uint32_t e = offset[q]; e < offset[q + 1]; ++e) {
-      __builtin_prefetch(&action[entry[e + kGatherAhead] >> 1]);
-      const std::uint32_t b = entry[e] >> 1;
-      const bool is_i = (entry[e] & 1u) == 0;
-      if (is_i) {
-        f += action[b].force_on_i_N;
-        t += action[b].torque_on_i_N_m;
-        h += bond_heat[b];
-        loss += action[b].loss_W;
-      } else {
-        f -= action[b].force_on_i_N;
-        t += action[b].torque_on_j_N_m;
-        h -= bond_heat[b];
+  // The particles in runs of whole blocks (a block's sums are one thread's, in particle
+  // order), one a thread, cut where each holds its share of the entries, with a few per
+  // particle besides: bonded grains are not spread evenly through the sort order, so runs
+  // of equal length left one thread waiting, and blocks dealt out in turn lose the cache
+  // the integrator then reads (docs/benchmarks.md, "Each thread keeps its own particles").
+  const std::vector<std::size_t> run_begin = NeighborList::owner_block_runs_by_entries(n, threads, offset);
+#pragma omp parallel num_threads(threads) if (n > 4096)
+  {
+    // A smaller team (a few particles: one thread) takes the runs in turn.
+    const std::size_t team = static_cast<std::size_t>(omp_get_num_threads());
+    for (std::size_t r = static_cast<std::size_t>(omp_get_thread_num()); r + 1 < run_begin.size(); r += team) {
+      for (std::size_t q = run_begin[r]; q < run_begin[r + 1]; ++q) {
+        if (ghost && ghost[q]) continue;
+        Vec3 f, t;
+        double h = 0.0, loss = 0.0, generated = 0.0;
+        // The actions of the entries a few ahead are asked for early (a bond's j end reads
+        // an action far from its neighbours'); the entry list has padding for this.
+        for (std::uint32_t e = offset[q]; e < offset[q + 1]; ++e) {
+          __builtin_prefetch(&action[entry[e + kGatherAhead] >> 1]);
+          const std::uint32_t b = entry[e] >> 1;
+          const bool is_i = (entry[e] & 1u) == 0;
+          if (is_i) {
+            f += action[b].force_on_i_N;
+            t += action[b].torque_on_i_N_m;
+            h += bond_heat[b];
+            loss += action[b].loss_W;
+          } else {
+            f -= action[b].force_on_i_N;
+            t += action[b].torque_on_j_N_m;
+            h -= bond_heat[b];
+          }
+          if (losses_heat && action[b].loss_W != 0.0) {
+            const double share_i = weighted ? heat_share_of_first(weight[local_i[b]], weight[local_j[b]]) : 0.5;
+            const double mine = (is_i ? share_i : 1.0 - share_i) * action[b].loss_W;
+            h += mine;
+            generated += mine;
+          }
+        }
+        force[q] += f;
+        torque[q] += t;
+        if (heat) heat_flow[q] += h;
+        if (loss != 0.0 || generated != 0.0) {
+          block_energy[q / block_size].dissipated_W += loss;
+          block_energy[q / block_size].generated_heat_W += generated;
+        }
       }
-      if (losses_heat && action[b].loss_W != 0.0) {
-        const double share_i = weighted ? heat_share_of_first(weight[local_i[b]], weight[local_j[b]]) : 0.5;
-        const double mine = (is_i ? share_i : 1.0 - share_i) * action[b].loss_W;
-        h += mine;
-        generated += mine;
-      }
-    }
-    force[q] += f;
-    torque[q] += t;
-    if (heat) heat_flow[q] += h;
-    if (loss != 0.0 || generated != 0.0) {
-      block_energy[q / block_size].dissipated_W += loss;
-      block_energy[q / block_size].generated_heat_W += generated;
     }
   }
 

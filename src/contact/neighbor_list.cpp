@@ -392,10 +392,10 @@ void NeighborList::rebuild(ParticleStore& particles, const WallSet& walls, const
   ++rebuilds_;
 }
 
-std::vector<std::size_t> NeighborList::owner_block_runs_by_entries(std::size_t n, int threads,
-                                                                  const std::uint32_t* offset) {
+void NeighborList::owner_block_runs_by_entries(std::size_t n, int threads, const std::uint32_t* offset,
+                                               std::vector<std::size_t>& begin) {
   const std::size_t runs = static_cast<std::size_t>(threads < 1 ? 1 : threads);
-  std::vector<std::size_t> begin(runs + 1, n);
+  begin.assign(runs + 1, n);
   begin[0] = 0;
   constexpr double kPerParticle = 4.0;  // entries' worth of a particle's own loads and stores
   const auto work_before = [&](std::size_t q) { return kPerParticle * static_cast<double>(q) + offset[q] - offset[0]; };
@@ -406,7 +406,6 @@ std::vector<std::size_t> NeighborList::owner_block_runs_by_entries(std::size_t n
     while (r < runs && work_before(at) >= total * static_cast<double>(r) / static_cast<double>(runs)) begin[r++] = at;
     if (at == n) break;
   }
-  return begin;
 }
 
 void NeighborList::index_partners(std::size_t particle_count) {

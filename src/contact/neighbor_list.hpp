@@ -113,16 +113,18 @@ class NeighborList {
   /// One thread's share of n particles in whole owner blocks, in order (a loop's
   /// schedule(static, run)): a block's sums stay one thread's, and each thread sums the
   /// run of particles the integrator's static loops then hand it (the lines stay in its
-  /// cache; blocks dealt out in turn were 3-12 % slower on the drilling window).
+  /// cache; blocks dealt out in turn were slower on the drilling window: docs/benchmarks.md,
+  /// "Each thread keeps its own particles").
   static std::size_t owner_block_run(std::size_t n, int threads) {
     const std::size_t blocks = (n + kOwnerBlock - 1) / kOwnerBlock, t = static_cast<std::size_t>(threads < 1 ? 1 : threads);
     return kOwnerBlock * ((blocks + t - 1) / t);
   }
   /// The same runs, one a thread, cut where each holds its share of the work of a loop over
   /// the particles that reads entries [offset[q], offset[q + 1]) of a CSR for particle q
-  /// (with a few entries' worth per particle besides): run r is [begin[r], begin[r + 1]).
-  static std::vector<std::size_t> owner_block_runs_by_entries(std::size_t n, int threads,
-                                                              const std::uint32_t* offset);
+  /// (with a few entries' worth per particle besides): run r is [begin[r], begin[r + 1])
+  /// (`begin` is the caller's, so that a pass each step allocates nothing).
+  static void owner_block_runs_by_entries(std::size_t n, int threads, const std::uint32_t* offset,
+                                          std::vector<std::size_t>& begin);
 
   /// Sorts the particles by cell, rebuilds both lists and carries the contact history.
   /// history_saved: save_history() was called before the particles changed (removal),

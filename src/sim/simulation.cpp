@@ -685,11 +685,12 @@ void Simulation::compute_forces_and_heat(double slip_time_s) {
   const std::uint32_t n_owners = static_cast<std::uint32_t>(particles.size());
   const std::uint32_t chunks = (n_owners + chunk_size - 1) / chunk_size;
   const std::uint32_t run_chunks = (chunks + static_cast<std::uint32_t>(threads) - 1) / static_cast<std::uint32_t>(threads);
-  struct alignas(64) NextChunk {  // one thread's next chunk of its run, a line each
-    std::atomic<std::uint32_t> chunk{0};
-  };
-  std::vector<NextChunk> next_chunk(static_cast<std::size_t>(threads));
-  for (int u = 0; u < threads; ++u) next_chunk[static_cast<std::size_t>(u)].chunk = static_cast<std::uint32_t>(u) * run_chunks;
+  if (next_chunk_count_ < threads) {
+    next_chunk_ = std::make_unique<NextChunk[]>(static_cast<std::size_t>(threads));
+    next_chunk_count_ = threads;
+  }
+  NextChunk* next_chunk = next_chunk_.get();
+  for (int u = 0; u < threads; ++u) next_chunk[u].chunk = static_cast<std::uint32_t>(u) * run_chunks;
 #pragma omp parallel num_threads(threads) reduction(+ : particle_contacts, wall_contacts)
   {
     const int t = omp_get_thread_num();

@@ -1,8 +1,10 @@
 #pragma once
 // The simulation state and its time step: particles, materials, walls, neighbour
 // lists, and the velocity-Verlet integrator around one contact pass per step.
+#include <atomic>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -349,6 +351,15 @@ class Simulation {
     double heat_W = 0.0, own_spin_N_m = 0.0;
   };
   std::vector<PartnerSum> partner_sum_;
+  // Per thread, the next chunk of its own run of owners in the force pass, a cache line
+  // each (taken by it first, then by the others once theirs are done).
+  struct alignas(64) NextChunk {
+    std::atomic<std::uint32_t> chunk{0};
+  };
+  std::unique_ptr<NextChunk[]> next_chunk_;
+  int next_chunk_count_ = 0;
+  // The bonds' gather: where each thread's run of particles begins (NeighborList::owner_block_runs_by_entries).
+  std::vector<std::size_t> bond_gather_run_;
   struct WallShare {
     Vec3 force_N, torque_N_m;
     double power_W = 0.0;  // the wall's work on the particles per unit time

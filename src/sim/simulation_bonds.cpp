@@ -281,7 +281,8 @@ void Simulation::apply_bonds(double dt_s) {
   // particle besides: bonded grains are not spread evenly through the sort order, so runs
   // of equal length left one thread waiting, and blocks dealt out in turn lose the cache
   // the integrator then reads (docs/benchmarks.md, "Each thread keeps its own particles").
-  const std::vector<std::size_t> run_begin = NeighborList::owner_block_runs_by_entries(n, threads, offset);
+  NeighborList::owner_block_runs_by_entries(n, threads, offset, bond_gather_run_);
+  const std::vector<std::size_t>& run_begin = bond_gather_run_;
 #pragma omp parallel num_threads(threads) if (n > 4096)
   {
     // A smaller team (a few particles: one thread) takes the runs in turn.

@@ -20,10 +20,11 @@ void BondStore::add(const ParticleStore& particles, std::uint32_t a, std::uint32
   rest_length_m.push_back(norm(d));
   section.push_back(bond_section);
   sequence.push_back(static_cast<std::uint32_t>(size() - 1));
+  for_each_field([&](auto member, auto role) {
+    if constexpr (role == FieldRole::pass_result) (this->*member).emplace_back();
+  });
   resize_state(size());
   set_state(size() - 1, normalized(d), {});
-  action.push_back({});
-  heat_to_i_W.push_back(0.0);
   broken.push_back(0);
 }
 
@@ -87,33 +88,20 @@ void BondStore::remove_broken(const ParticleStore& particles, int threads) {
     for (std::size_t b = first; b < size(); ++b)
       if (!broken[b]) field[to++] = field[b];
   };
-  constexpr int kFields = 10;
   const int jobs = kFields + static_cast<int>(state.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) if (size() > 4096)
   for (int job = 0; job < jobs; ++job) {
-    switch (job) {
-      case 0: compact(id_i); break;
-      case 1: compact(id_j); break;
-      case 2: compact(local_i); break;
-      case 3: compact(local_j); break;
-      case 4: compact(kind); break;
-      case 5: compact(rest_length_m); break;
-      case 6: compact(section); break;
-      case 7: compact(sequence); break;
-      case 8: compact(action); break;
-      case 9: compact(heat_to_i_W); break;
-      default: compact(state[static_cast<std::size_t>(job - kFields)]); break;
+    if (job >= kFields) {
+      compact(state[static_cast<std::size_t>(job - kFields)]);
+      continue;
     }
+    int field = 0;
+    for_each_field([&](auto member, auto) {
+      if (field++ == job) compact(this->*member);
+    });
   }
-  for (auto* field : {&id_i, &id_j}) field->resize(kept);
-  for (auto* field : {&local_i, &local_j}) field->resize(kept);
-  kind.resize(kept);
-  rest_length_m.resize(kept);
-  section.resize(kept);
-  sequence.resize(kept);
+  for_each_field([&](auto member, auto) { (this->*member).resize(kept); });
   resize_state(kept);
-  action.resize(kept);
-  heat_to_i_W.resize(kept);
   broken.assign(kept, 0);
   rebuild_per_particle(particles.size());
 }
@@ -130,18 +118,17 @@ void BondStore::number_in_order() {
 }
 
 void BondStore::append_from(const BondStore& from, std::size_t b) {
-  id_i.push_back(from.id_i[b]);
-  id_j.push_back(from.id_j[b]);
-  local_i.push_back(kNone);
-  local_j.push_back(kNone);
-  kind.push_back(from.kind[b]);
-  rest_length_m.push_back(from.rest_length_m[b]);
-  section.push_back(from.section[b]);
-  sequence.push_back(from.sequence[b]);
+  for_each_field([&](auto member, auto role) {
+    auto& field = this->*member;
+    if constexpr (role == FieldRole::travels)
+      field.push_back((from.*member)[b]);
+    else if constexpr (role == FieldRole::local_index)
+      field.push_back(kNone);  // found again by refresh_indices
+    else
+      field.emplace_back();
+  });
   resize_state(size());
   for (int row = 0; row < state_rows; ++row) state[row][size() - 1] = from.state[row][b];
-  action.push_back({});
-  heat_to_i_W.push_back(0.0);
   broken.push_back(0);
 }
 

@@ -7,6 +7,7 @@
 // deterministic for any thread count.
 #include <array>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "contact/parallel_bond.hpp"
@@ -67,6 +68,34 @@ class BondStore {
   // zeros, so that the gather may look that far ahead.
   std::vector<std::uint32_t> bond_offset;
   std::vector<std::uint32_t> bond_entry;
+
+  /// What a per-bond field is to the operations that treat every field alike: a bond's
+  /// own value, which goes with it to another rank (and in that order); an end's local
+  /// index, found again there; or what the last bond pass wrote.
+  enum class FieldRole { travels, local_index, pass_result };
+  template <FieldRole R>
+  using Role = std::integral_constant<FieldRole, R>;
+  /// Calls visit(member, role) for each per-bond field but the state rows (which travel,
+  /// after these) and `broken` (a removal's flags): member points at the BondStore
+  /// vector, role is a Role<>. A new field listed here is taken by every removal, append
+  /// and transfer between ranks.
+  template <class Visit>
+  static void for_each_field(Visit&& visit) {
+    constexpr Role<FieldRole::travels> travels;
+    constexpr Role<FieldRole::local_index> local_index;
+    constexpr Role<FieldRole::pass_result> pass_result;
+    visit(&BondStore::id_i, travels);
+    visit(&BondStore::id_j, travels);
+    visit(&BondStore::local_i, local_index);
+    visit(&BondStore::local_j, local_index);
+    visit(&BondStore::kind, travels);
+    visit(&BondStore::rest_length_m, travels);
+    visit(&BondStore::section, travels);
+    visit(&BondStore::sequence, travels);
+    visit(&BondStore::action, pass_result);
+    visit(&BondStore::heat_to_i_W, pass_result);
+  }
+  static constexpr int kFields = 10;  // for_each_field's
 
   std::size_t size() const { return id_i.size(); }
   bool empty() const { return id_i.empty(); }

@@ -9,27 +9,23 @@
 namespace regodem {
 namespace {
 
-// One bond's bytes: its fields one after another, the state rows last.
+// One bond's bytes: the fields that travel one after another (BondStore::for_each_field),
+// the state rows last.
 template <typename Store, typename F>  // Store: BondStore or const BondStore
 void for_each_bond_value(Store& bonds, std::size_t b, F&& f) {
-  f(&bonds.id_i[b], sizeof(ParticleId));
-  f(&bonds.id_j[b], sizeof(ParticleId));
-  f(&bonds.kind[b], sizeof(std::uint16_t));
-  f(&bonds.rest_length_m[b], sizeof(double));
-  f(&bonds.section[b], sizeof(BondSection));
-  f(&bonds.sequence[b], sizeof(std::uint32_t));
+  BondStore::for_each_field([&](auto member, auto role) {
+    if constexpr (role == BondStore::FieldRole::travels) {
+      auto& value = (bonds.*member)[b];
+      f(&value, sizeof value);
+    }
+  });
   for (auto& row : bonds.state) f(&row[b], sizeof(double));
 }
 
 /// A store of one bond, every field in place: what a bond is read into, or measured by.
 BondStore one_bond() {
   BondStore one;
-  one.id_i.resize(1);
-  one.id_j.resize(1);
-  one.kind.resize(1);
-  one.rest_length_m.resize(1);
-  one.section.resize(1);
-  one.sequence.resize(1);
+  BondStore::for_each_field([&](auto member, auto) { (one.*member).resize(1); });
   one.resize_state(1);
   return one;
 }

@@ -77,10 +77,12 @@ class BondStore {
   using Role = std::integral_constant<FieldRole, R>;
   /// Calls visit(member, role) for each per-bond field but the state rows (which travel,
   /// after these) and `broken` (a removal's flags): member points at the BondStore
-  /// vector, role is a Role<>. A new field listed here is taken by every removal, append
-  /// and transfer between ranks.
+  /// vector, role is a Role<>. A new field listed here (and counted in kFields, which a
+  /// static_assert below checks) is taken by every removal, append and transfer between
+  /// ranks; add() still gives each travelling field its value at formation, and the local
+  /// indices are local_i and local_j alone (refresh_indices, renumber).
   template <class Visit>
-  static void for_each_field(Visit&& visit) {
+  static constexpr void for_each_field(Visit&& visit) {
     constexpr Role<FieldRole::travels> travels;
     constexpr Role<FieldRole::local_index> local_index;
     constexpr Role<FieldRole::pass_result> pass_result;
@@ -95,7 +97,7 @@ class BondStore {
     visit(&BondStore::action, pass_result);
     visit(&BondStore::heat_to_i_W, pass_result);
   }
-  static constexpr int kFields = 10;  // for_each_field's
+  static constexpr int kFields = 10;  // for_each_field's (checked below)
 
   std::size_t size() const { return id_i.size(); }
   bool empty() const { return id_i.empty(); }
@@ -130,11 +132,20 @@ class BondStore {
   /// Keeps the bonds flagged, one of each sequence number, in sequence order. The local
   /// indices are then stale: refresh_indices() finds them.
   void keep_in_sequence_order(const std::vector<char>& keep);
-  /// Appends bond b of `from` (its identity, section and loads; scratch fields zero).
+  /// Appends bond b of `from` (what travels: its identity, section and loads; its local
+  /// indices unknown until refresh_indices, its pass results zero).
   void append_from(const BondStore& from, std::size_t b);
 
  private:
   void rebuild_per_particle(std::size_t particle_count);
 };
+
+static_assert(
+    [] {
+      int fields = 0;
+      BondStore::for_each_field([&](auto, auto) { ++fields; });
+      return fields;
+    }() == BondStore::kFields,
+    "BondStore::kFields must count for_each_field's fields (remove_broken shares them out by it)");
 
 }  // namespace regodem

@@ -1,10 +1,11 @@
 // The bond store's operations that treat every per-bond field alike (its field table,
 // BondStore::for_each_field): a removal of broken bonds moves every field of each kept
 // bond with it, in order, and refreshes each particle's bond index; a bond packed for
-// another rank arrives with every field that travels, its local indices to be found
-// again and its pass results zero.
+// another rank arrives with every field that travels, in a layout of fixed order, its
+// local indices to be found again and its pass results zero.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <vector>
 
 #include "contact/bond_store.hpp"
@@ -112,9 +113,53 @@ TEST(BondStore, ABondSentToAnotherRankArrivesWithWhatTravels) {
     expect_bond(arrived, k, which[k], false);
     EXPECT_EQ(arrived.id_i[k], sent.id_i[which[k]]);
     EXPECT_EQ(arrived.local_i[k], 0xFFFFFFFFu);  // found again by refresh_indices
+    EXPECT_EQ(arrived.local_j[k], 0xFFFFFFFFu);
   }
   ASSERT_EQ(arrived.refresh_indices(particles), arrived.size());
-  for (std::size_t k = 0; k < which.size(); ++k) EXPECT_EQ(arrived.local_i[k], which[k]);
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    EXPECT_EQ(arrived.local_i[k], which[k]);
+    EXPECT_EQ(arrived.local_j[k], which[k] + 1);
+  }
+}
+
+// The bytes of one bond, field by field in their order (what ranks of one build exchange):
+// the two ids, the kind, the rest length, the section, the sequence, then the 11 state rows.
+TEST(BondStore, ABondsBytesKeepTheirLayout) {
+  const ParticleStore particles = particles_in_a_row(20);
+  const BondStore sent = named_bonds(particles, 19);
+  const std::vector<std::uint32_t> which{5};
+  std::vector<std::byte> bytes;
+  pack_bonds(sent, which, bytes);
+  std::size_t at = sizeof(std::uint64_t);  // the count
+  const auto next = [&](auto& value) {
+    ASSERT_LE(at + sizeof value, bytes.size());
+    std::memcpy(&value, bytes.data() + at, sizeof value);
+    at += sizeof value;
+  };
+  ParticleId id_i = 0, id_j = 0;
+  std::uint16_t kind = 0;
+  double rest_length_m = 0.0;
+  BondSection section;
+  std::uint32_t sequence = 0;
+  next(id_i);
+  next(id_j);
+  next(kind);
+  next(rest_length_m);
+  next(section);
+  next(sequence);
+  EXPECT_EQ(id_i, sent.id_i[5]);
+  EXPECT_EQ(id_j, sent.id_j[5]);
+  EXPECT_EQ(kind, sent.kind[5]);
+  EXPECT_EQ(rest_length_m, sent.rest_length_m[5]);
+  EXPECT_EQ(section.radius_m, sent.section[5].radius_m);
+  EXPECT_EQ(sequence, sent.sequence[5]);
+  for (int row = 0; row < BondStore::state_rows; ++row) {
+    double value = 0.0;
+    next(value);
+    EXPECT_EQ(value, sent.state[row][5]) << row;
+  }
+  EXPECT_EQ(at, bytes.size());
+  EXPECT_EQ(bytes_per_bond(), at - sizeof(std::uint64_t));
 }
 
 }  // namespace

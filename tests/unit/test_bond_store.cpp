@@ -61,12 +61,12 @@ void expect_bond(const BondStore& bonds, std::size_t k, std::size_t b, bool with
 TEST(BondStore, EveryFieldOfTheTableHasOneValuePerBond) {
   const ParticleStore particles = particles_in_a_row(10);
   BondStore bonds = named_bonds(particles, 9);
-  int fields = 0;
+  // (The count of the table's fields is a static_assert in bond_store.hpp.)
+  int field = 0;
   BondStore::for_each_field([&](auto member, auto) {
-    EXPECT_EQ((bonds.*member).size(), bonds.size()) << "field " << fields;
-    ++fields;
+    EXPECT_EQ((bonds.*member).size(), bonds.size()) << "field " << field;
+    ++field;
   });
-  EXPECT_EQ(fields, BondStore::kFields);
 }
 
 TEST(BondStore, ARemovalMovesEveryFieldOfTheKeptBondsInOrder) {
@@ -105,9 +105,8 @@ TEST(BondStore, ABondSentToAnotherRankArrivesWithWhatTravels) {
   const std::vector<std::uint32_t> which{4, 0, 17};
   std::vector<std::byte> bytes;
   pack_bonds(sent, which, bytes);
-  EXPECT_EQ(bytes.size(), sizeof(std::uint64_t) + which.size() * bytes_per_bond());
   BondStore arrived;
-  EXPECT_EQ(unpack_bonds(bytes, arrived), bytes.size());
+  unpack_bonds(bytes, arrived);  // its layout: ABondsBytesKeepTheirLayout
   ASSERT_EQ(arrived.size(), which.size());
   for (std::size_t k = 0; k < which.size(); ++k) {
     expect_bond(arrived, k, which[k], false);

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "core/error.hpp"
 #include "paper_bed.hpp"
@@ -21,12 +20,7 @@ void BM_BondedBed(benchmark::State& state) {
   const auto count = static_cast<std::size_t>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
   const bool bonded = state.range(2) != 0;
-  static std::map<std::size_t, std::vector<ParticleRecord>> stiffened;
-  if (!stiffened.count(count)) stiffened[count] = stiffened_bed(settled_bed(count), 2);
-  BedOptions options;
-  options.threads = threads;
-  Simulation sim = paper_bed_simulation(stiffened[count], options);
-  sim.advance(3000);  // the last decade: take up the load at the real modulus
+  Simulation sim = loaded_bed_simulation(count, threads);  // at rest at the real modulus
   if (bonded) {
     sim.configure_bonds({icy_regolith_bond_parameters()}, {0});
     sim.form_bonds(0.05);

@@ -81,10 +81,8 @@ bond_kernel::BondStepInput<double> bond_step_input(const BondParameters& p, cons
                                                    double rest_length_m, const BondKinematics& k,
                                                    const Vec3& normal, const BondLoads& loads) {
   bond_kernel::BondStepInput<double> in;
-  in.position_i = lanes(k.position_i_m);
-  in.position_j = lanes(k.position_j_m);
-  in.velocity_i = lanes(k.velocity_i_m_per_s);
-  in.velocity_j = lanes(k.velocity_j_m_per_s);
+  in.separation = lanes(k.position_j_m - k.position_i_m);
+  in.centre_velocity = lanes(k.velocity_j_m_per_s - k.velocity_i_m_per_s);
   in.spin_i = lanes(k.angular_velocity_i_rad_per_s);
   in.spin_j = lanes(k.angular_velocity_j_rad_per_s);
   in.radius_i = k.radius_i_m;

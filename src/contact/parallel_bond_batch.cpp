@@ -57,10 +57,8 @@ void step_bond_batch(const BondLaneSource& source, BondStore& bonds, std::size_t
     const std::size_t b = first_bond + static_cast<std::size_t>(k);
     if (b + kAhead < bond_count) prefetch_ends(b + kAhead);
     const std::uint32_t i = bonds.local_i[b], j = bonds.local_j[b];
-    put3(B::position_i, k, source.position_m[i]);
-    put3(B::position_j, k, source.position_m[j]);
-    put3(B::velocity_i, k, source.velocity_m_per_s[i]);
-    put3(B::velocity_j, k, source.velocity_m_per_s[j]);
+    put3(B::separation, k, source.position_m[j] - source.position_m[i]);
+    put3(B::centre_velocity, k, source.velocity_m_per_s[j] - source.velocity_m_per_s[i]);
     put3(B::spin_i, k, source.angular_velocity_rad_per_s[i]);
     put3(B::spin_j, k, source.angular_velocity_rad_per_s[j]);
     in[B::radius_i][k] = source.radius_m[i];
@@ -92,10 +90,8 @@ void step_bond_batch(const BondLaneSource& source, BondStore& bonds, std::size_t
       store(&old[r][first], before[r]);
     }
     bond_kernel::BondStepInput<BondLanes> v;
-    v.position_i = load3(row(B::position_i), stride);
-    v.position_j = load3(row(B::position_j), stride);
-    v.velocity_i = load3(row(B::velocity_i), stride);
-    v.velocity_j = load3(row(B::velocity_j), stride);
+    v.separation = load3(row(B::separation), stride);
+    v.centre_velocity = load3(row(B::centre_velocity), stride);
     v.spin_i = load3(row(B::spin_i), stride);
     v.spin_j = load3(row(B::spin_j), stride);
     v.radius_i = load(row(B::radius_i));

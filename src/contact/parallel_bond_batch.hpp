@@ -34,8 +34,8 @@ class BondBatch {
 
   // Rows of the inputs and results, kBonds values each.
   enum Input : int {
-    position_i, position_j = position_i + 3, velocity_i = position_j + 3, velocity_j = velocity_i + 3,
-    spin_i = velocity_j + 3, spin_j = spin_i + 3, radius_i = spin_j + 3, radius_j, rest_length,
+    separation, centre_velocity = separation + 3, spin_i = centre_velocity + 3, spin_j = spin_i + 3,
+    radius_i = spin_j + 3, radius_j, rest_length,
     normal_stiffness, shear_stiffness, twist_stiffness, bend_stiffness, input_rows
   };
   enum Output : int {

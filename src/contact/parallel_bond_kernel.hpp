@@ -74,7 +74,10 @@ inline V3<T> select(decltype(T{} < T{}) m, const V3<T>& a, const V3<T>& b) {
 /// One bond's inputs: the pair's state over the step and the bond's stored state.
 template <class T>
 struct BondStepInput {
-  V3<T> position_i, position_j, velocity_i, velocity_j, spin_i, spin_j;
+  // x_j - x_i and v_j - v_i (the law needs only these of the positions and velocities;
+  // the pass takes the differences as it reads the particles, one row each, not four)
+  V3<T> separation, centre_velocity;
+  V3<T> spin_i, spin_j;
   T radius_i, radius_j, rest_length;
   V3<T> normal;  // of the last step
   T normal_force, twist_moment;
@@ -137,7 +140,7 @@ inline SmallestRotation<T> smallest_rotation(const V3<T>& a, const V3<T>& b) {
 template <class T, class Spin>
 [[gnu::always_inline]] inline BondStepOutput<T> bond_step(const BondStepInput<T>& in, const Spin& spin, double dt_s) {
   BondStepOutput<T> out;
-  const V3<T> d = in.position_j - in.position_i;
+  const V3<T> d = in.separation;
   const T length = lane_sqrt(dot(d, d)), inv_length = 1.0 / length;
   const V3<T> n = d * inv_length;
 
@@ -154,7 +157,7 @@ template <class T, class Spin>
   out.arm_i = 0.5 * (length + in.radius_i - in.radius_j);
   out.arm_j = length - out.arm_i;
   const V3<T> wi = in.spin_i, wj = in.spin_j;
-  const V3<T> centre_velocity = in.velocity_j - in.velocity_i;
+  const V3<T> centre_velocity = in.centre_velocity;
   const V3<T> d_mid = d - centre_velocity * (T{} + 0.5 * dt_s);
   const T mid_length = lane_sqrt(dot(d_mid, d_mid));
   const V3<T> n_mid = select(mid_length > T{}, V3<T>{d_mid.x / mid_length, d_mid.y / mid_length, d_mid.z / mid_length},

@@ -2,7 +2,8 @@
 // particles of 0.6 mm, G = 3e9 Pa, 0.2 of the Rayleigh step) with every touching pair
 // (and every pair within 5 % of the radius) bonded with the default icy-regolith bond,
 // against the same bed without bonds. The bond pass runs after the contact pass: one
-// update per bond, then a gather per particle.
+// update per bond, then a gather per particle. The bed at rest at the real modulus is made
+// once and kept in the cache (loaded_bed_simulation, paper_bed.hpp): a later run restores it.
 //
 //   REGODEM_BENCH_CACHE=/work/bench-cache build/release/bench/bench_bonds --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>

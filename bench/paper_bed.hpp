@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <unistd.h>
 
@@ -204,16 +205,36 @@ inline std::vector<ParticleRecord> stiffened_bed(std::vector<ParticleRecord> bed
 /// The stiffened bed after its last decade at the real modulus (3,000 steps, which take
 /// up the load), without heat: the stiffened records and a checkpoint of that state are
 /// kept in the cache (made once, on 2 threads), so that a bench's setup is a restore.
-/// The restored run continues exactly as the run that wrote it would have.
+/// The restored run continues exactly as the run that wrote it would have, with the
+/// physics that wrote it: the checkpoint refuses another time step, other materials or
+/// walls, but not another friction, contact law or stiffening. So the files' names carry
+/// a version, kLoadedBedVersion: raise it when any of those changes (or when the settled
+/// bed is poured again), and the bed is made anew.
+inline constexpr int kLoadedBedVersion = 1;
 inline Simulation loaded_bed_simulation(std::size_t count, int threads) {
   const char* dir = std::getenv("REGODEM_BENCH_CACHE");
-  const std::filesystem::path base =
-      std::filesystem::path(dir ? dir : ".") / ("regodem-bench-bed-" + std::to_string(count) + "-loaded");
-  const std::filesystem::path records = base.string() + ".csv", state = base.string() + ".rgck";
+  const std::string base = (std::filesystem::path(dir ? dir : ".") /
+                            ("regodem-bench-bed-" + std::to_string(count) + "-loaded-v" +
+                             std::to_string(kLoadedBedVersion)))
+                               .string();
+  const std::filesystem::path records = base + ".csv", state = base + ".rgck";
   if (!std::filesystem::exists(records) || !std::filesystem::exists(state)) {
     std::fprintf(stderr, "stiffening and loading the %zu-particle bed into %s.{csv,rgck} (once)...\n", count,
                  base.c_str());
     const std::vector<ParticleRecord> bed = stiffened_bed(settled_bed(count), 2);
+    // The records first, whole or not at all; the checkpoint last (written whole by
+    // write_checkpoint_file): where it exists, both are complete.
+    const std::filesystem::path partial = base + ".csv.partial";
+    {
+      std::ofstream out(partial);
+      out.precision(17);  // the walls are placed from these: exact, so the checkpoint fits
+      out << "x,y,z,radius\n";
+      for (const ParticleRecord& r : bed)
+        out << r.position_m.x << ',' << r.position_m.y << ',' << r.position_m.z << ',' << r.radius_m << '\n';
+      out.close();
+      if (!out) throw std::runtime_error("could not write " + partial.string());
+    }
+    std::filesystem::rename(partial, records);
     BedOptions options;
     options.threads = 2;
     Simulation sim = paper_bed_simulation(bed, options);
@@ -221,11 +242,6 @@ inline Simulation loaded_bed_simulation(std::size_t count, int threads) {
     Checkpoint checkpoint;
     sim.save_state(checkpoint);
     write_checkpoint_file(state, checkpoint);
-    std::ofstream out(records);
-    out.precision(17);  // the walls are placed from these: exact, so the checkpoint fits
-    out << "x,y,z,radius\n";
-    for (const ParticleRecord& r : bed)
-      out << r.position_m.x << ',' << r.position_m.y << ',' << r.position_m.z << ',' << r.radius_m << '\n';
   }
   BedOptions options;
   options.threads = threads;

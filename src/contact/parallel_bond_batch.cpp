@@ -35,7 +35,8 @@ void step_bond_batch(const BondLaneSource& source, BondStore& bonds, std::size_t
   auto& out = batch.out_;
   auto& old = batch.old_;
 
-  // 1. The particles' values and the bonds' constants, copied into the rows bond by bond.
+  // 1. What the bonds need of their particles (x_j - x_i, v_j - v_i, the spins and radii)
+  // and the bonds' constants, copied into the rows bond by bond.
   const auto put3 = [&](int row, int k, const Vec3& v) {
     in[row][k] = v.x;
     in[row + 1][k] = v.y;
@@ -71,7 +72,7 @@ void step_bond_batch(const BondLaneSource& source, BondStore& bonds, std::size_t
     in[B::twist_stiffness][k] = kind.shear_stiffness_Pa_per_m * section.polar_inertia_m4;
     in[B::bend_stiffness][k] = kind.normal_stiffness_Pa_per_m * section.inertia_m4;
   }
-  // A short last vector repeats the batch's first bond's particles in its spare lanes,
+  // A short last vector repeats the batch's first bond's inputs in its spare lanes,
   // with the state of the store's padding; they are written back unchanged.
   const int padded = (count + kLanes - 1) / kLanes * kLanes;
   for (int row = 0; row < B::input_rows; ++row)

@@ -7,8 +7,9 @@
 //
 // Why a batch: filling a vector lane by lane straight before using it makes the CPU
 // wait for each small store to reach the wide load (a store-forwarding stall), which
-// cost more than the bond law's arithmetic. So the batch first copies the particles'
-// values of all its bonds into rows (one row per scalar, structure of arrays), then
+// cost more than the bond law's arithmetic. So the batch first copies what its bonds need
+// of their particles (the pairs' separations, relative velocities, spins and radii) and the
+// bonds' constants into rows (one row per scalar, structure of arrays), then
 // steps them a vector at a time with whole-vector loads and stores; the bonds' own state
 // is already in rows (BondStore::state).
 #include <cstddef>

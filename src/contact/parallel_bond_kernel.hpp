@@ -75,7 +75,7 @@ inline V3<T> select(decltype(T{} < T{}) m, const V3<T>& a, const V3<T>& b) {
 template <class T>
 struct BondStepInput {
   // x_j - x_i and v_j - v_i (the law needs only these of the positions and velocities;
-  // the pass takes the differences as it reads the particles, one row each, not four)
+  // the pass takes the differences as it reads the particles: two vectors, not four)
   V3<T> separation, centre_velocity;
   V3<T> spin_i, spin_j;
   T radius_i, radius_j, rest_length;
